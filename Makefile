@@ -1,0 +1,50 @@
+# mcp2510: SocketCAN driver for the Microchip MCP2510/MCP2515/MCP25625,
+# its userspace port, and the simulated chip both are tested against.
+#
+# Every area keeps its rules in its own fragment; this file only ties them
+# together and defines the targets README.md documents.
+
+TOP := $(abspath $(dir $(lastword $(MAKEFILE_LIST))))
+BUILD := $(TOP)/build
+ENSURE := $(TOP)/scripts/ensure-packages
+
+CC ?= cc
+CSTD := -std=c11
+WARN := -Wall -Wextra -Werror
+SANITIZE := -fsanitize=address,undefined -fno-omit-frame-pointer \
+	    -fno-sanitize-recover=all
+
+# Packages every host-side build and test needs.
+HOST_PACKAGES := build-essential pkg-config libcmocka-dev libgpiod-dev
+
+.PHONY: all check deps help
+all: unit-build userspace
+
+help:
+	@echo "make check     everything CI runs (installs what it needs)"
+	@echo "make demo      two simulated MCP2510s exchanging frames"
+	@echo "make unit      cmocka suites; make unit-asan: the same under ASan/UBSan"
+	@echo "make coverage  line coverage of the chip model (tests/sim)"
+	@echo "make userspace libmcp2510, mcp2510ctl, mcp2510d"
+	@echo "make modules   kernel modules (KDIR= selects the headers)"
+	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
+
+deps:
+	@$(ENSURE) $(HOST_PACKAGES)
+
+# Fragments append their steps to CHECK_STEPS in the order they should run.
+CHECK_STEPS :=
+
+include tests/sim/sim.mk
+include driver/core/core.mk
+include userspace/userspace.mk
+include tests/unit/unit.mk
+include driver/driver.mk
+include tests/vm/vm.mk
+include dts/dts.mk
+
+check: deps
+	@set -e; for step in $(CHECK_STEPS); do \
+		echo "== make $$step"; $(MAKE) --no-print-directory $$step; \
+	done
+	@echo "== make check: all steps passed ($(CHECK_STEPS))"

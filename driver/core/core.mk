@@ -1,0 +1,1 @@
+# driver/core/core.mk: filled in by its area

@@ -1,0 +1,1 @@
+# driver/driver.mk: filled in by its area

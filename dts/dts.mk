@@ -1,0 +1,1 @@
+# dts/dts.mk: filled in by its area

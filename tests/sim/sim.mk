@@ -1,0 +1,1 @@
+# tests/sim/sim.mk: filled in by its area

@@ -1,0 +1,1 @@
+# userspace/userspace.mk: filled in by its area
