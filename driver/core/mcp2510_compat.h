@@ -1,0 +1,59 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * The one place that knows whether this code is built into the kernel or
+ * into a userspace program.  The portable driver core and the simulated chip
+ * include only this header for types, bit helpers and the SocketCAN
+ * definitions, so the same source compiles in both homes unchanged.
+ */
+#ifndef MCP2510_COMPAT_H
+#define MCP2510_COMPAT_H
+
+#ifdef __KERNEL__
+
+#include <linux/bitfield.h>
+#include <linux/bits.h>
+#include <linux/errno.h>
+#include <linux/kernel.h>
+#include <linux/limits.h>
+#include <linux/string.h>
+#include <linux/types.h>
+#include <linux/can.h>
+#include <linux/can/error.h>
+#include <linux/can/netlink.h>
+
+#else /* userspace */
+
+#include <errno.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+#include <linux/types.h>
+#include <linux/can.h>
+#include <linux/can/error.h>
+#include <linux/can/netlink.h>
+
+typedef uint8_t u8;
+typedef uint16_t u16;
+typedef uint32_t u32;
+typedef uint64_t u64;
+typedef int32_t s32;
+typedef int64_t s64;
+
+#define BIT(n)			(1UL << (n))
+#define GENMASK(h, l)		((~0ULL >> (63 - (h))) & (~0ULL << (l)))
+#define FIELD_PREP(mask, val)	(((val) << __builtin_ctzll(mask)) & (mask))
+#define FIELD_GET(mask, reg)	(((reg) & (mask)) >> __builtin_ctzll(mask))
+#define ARRAY_SIZE(a)		(sizeof(a) / sizeof((a)[0]))
+#define DIV_ROUND_CLOSEST(x, d)	(((x) + (d) / 2) / (d))
+#define DIV_ROUND_UP(x, d)	(((x) + (d) - 1) / (d))
+#define U32_MAX			UINT32_MAX
+#define U64_MAX			UINT64_MAX
+
+#ifndef fallthrough
+#define fallthrough		__attribute__((__fallthrough__))
+#endif
+
+#endif /* __KERNEL__ */
+
+#endif /* MCP2510_COMPAT_H */
