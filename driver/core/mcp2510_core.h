@@ -1,0 +1,215 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Portable MCP2510/MCP2515/MCP25625 driver core.
+ *
+ * Everything about the chip that is not about Linux: SPI framing, bring-up,
+ * bit timing, acceptance filters, frame encoding, the ordered three-buffer
+ * transmit scheduler, interrupt decoding and the error-state machine.  It is
+ * compiled unchanged into the kernel module and into libmcp2510.
+ *
+ * The core never allocates, sleeps (other than through ops->delay_us),
+ * locks or logs.  The caller serialises every call on one chip, performs
+ * the SPI transfers through ops and receives what happened through events.
+ * Functions return 0 (or a non-negative count) or a negative errno.
+ */
+#ifndef MCP2510_CORE_H
+#define MCP2510_CORE_H
+
+#include "mcp2510_compat.h"
+#include <linux/can/mcp2510.h>
+
+enum mcp2510_model {
+	MCP2510_MODEL_MCP2510,
+	MCP2510_MODEL_MCP2515,
+	MCP2510_MODEL_MCP25625,
+};
+
+/* What differs between the chips of the family. */
+struct mcp2510_variant {
+	const char *name;
+	enum mcp2510_model model;
+	u32 spi_default_hz;		/* 5 MHz MCP2510, 10 MHz MCP2515 */
+	bool has_buffer_instrs;		/* READ RX BUFFER, LOAD TX BUFFER, RX STATUS */
+	bool has_one_shot;		/* CANCTRL.OSM */
+	u8 reset_canctrl;		/* CANCTRL after RESET, for detection */
+};
+
+const struct mcp2510_variant *mcp2510_variant_get(enum mcp2510_model model);
+
+/* Oscillator limits accepted by the core, in Hz (the CAN clock is half). */
+#define MCP2510_OSC_MIN_HZ	1000000
+#define MCP2510_OSC_MAX_HZ	25000000
+
+/* The chip's bit-timing limits, in CAN clock (oscillator / 2) quanta. */
+extern const struct can_bittiming_const mcp2510_bittiming_const;
+
+struct mcp2510_ops {
+	/*
+	 * One chip-select-low period: clock out @len bytes of @tx while
+	 * storing what the chip returns in @rx (@rx may be NULL).  The core
+	 * passes buffers on its stack: a transport that needs DMA-safe memory
+	 * copies.  Returns 0 or a negative errno (the core reports -EIO).
+	 */
+	int (*xfer)(void *ctx, const u8 *tx, u8 *rx, unsigned int len);
+	/* Wait at least @us microseconds; may sleep. */
+	void (*delay_us)(void *ctx, unsigned int us);
+};
+
+struct mcp2510_events {
+	/* A frame arrived; called in the order the chip received them. */
+	void (*rx)(void *ctx, const struct can_frame *cf);
+	/* The frame loaded into TX buffer @slot was sent: in queue order. */
+	void (*tx_done)(void *ctx, unsigned int slot);
+	/* The frame in @slot was dropped (abort, one-shot failure, restart). */
+	void (*tx_aborted)(void *ctx, unsigned int slot);
+	/* The error state changed, with the counters at that moment. */
+	void (*state)(void *ctx, enum can_state state,
+		      const struct can_berr_counter *bec);
+	/*
+	 * A SocketCAN error frame to deliver (CAN_ERR_FLAG set, class bits in
+	 * can_id, details in data[] as <linux/can/error.h> lays out, TEC/REC
+	 * in data[6..7] with CAN_ERR_CNT).  The class bits tell the caller
+	 * which statistics to count.
+	 */
+	void (*error)(void *ctx, const struct can_frame *cf);
+};
+
+/* The two masks, six filters and receive modes (see the uapi header). */
+struct mcp2510_filter_id {
+	u32 id;				/* 11 or 29 bit identifier */
+	bool ext;			/* extended (29 bit) */
+};
+
+struct mcp2510_filters {
+	struct mcp2510_filter_id mask[MCP2510_MASK_COUNT];
+	struct mcp2510_filter_id filter[MCP2510_FILTER_COUNT];
+	u8 rxm[MCP2510_RXB_COUNT];	/* MCP2510_RXM_* */
+	bool rollover;			/* RXB0CTRL.BUKT */
+};
+
+/* Accept every frame: masks 0, both buffers filtered, rollover on. */
+void mcp2510_filters_default(struct mcp2510_filters *f);
+/* Parse "7ff" or "1fffffffx" (sysfs and CLI syntax); -EINVAL if bad. */
+int mcp2510_filter_id_parse(const char *s, size_t len,
+			    struct mcp2510_filter_id *out);
+/* Format as above into @buf (at least 12 bytes); returns the length. */
+int mcp2510_filter_id_format(const struct mcp2510_filter_id *id, char *buf);
+/* Parse/format a receive mode name: filtered, std, ext, any. */
+int mcp2510_rxm_parse(const char *s, size_t len, u8 *rxm);
+const char *mcp2510_rxm_name(u8 rxm);
+
+struct mcp2510_counters {
+	u32 rx_overflows;		/* frames lost to a full RX buffer */
+	u32 bus_errors;			/* MERRF events */
+	u32 arbitration_lost;
+	u32 tx_errors;			/* TXERR / aborted frames */
+	u32 warnings, passives, bus_offs, restarts;
+	u32 irq_loops;			/* passes through the interrupt loop */
+	u32 irq_storms;			/* loops stopped by the bound */
+};
+
+/*
+ * One chip.  The caller owns the memory (embedded in its private data),
+ * fills it with mcp2510_init() and treats the fields as private.
+ */
+struct mcp2510_chip {
+	const struct mcp2510_variant *variant;
+	const struct mcp2510_ops *ops;
+	const struct mcp2510_events *events;
+	void *ctx;
+	u32 osc_hz;
+	u32 ctrlmode;			/* CAN_CTRLMODE_* in force */
+	bool irq_edge;			/* INT wired to an edge-triggered input */
+	enum can_state state;
+	struct can_berr_counter bec;
+	struct mcp2510_filters filters;
+	struct mcp2510_counters counters;
+
+	/* Ordered transmit scheduler state (see tx.c). */
+	struct {
+		u32 seq[MCP2510_TXB_COUNT];	/* queue position per slot */
+		u8 prio[MCP2510_TXB_COUNT];	/* TXP given to each slot */
+		u8 busy;			/* bit n: slot n holds a frame */
+		u32 next_seq;
+	} tx;
+};
+
+int mcp2510_init(struct mcp2510_chip *chip, const struct mcp2510_variant *v,
+		 u32 osc_hz, const struct mcp2510_ops *ops,
+		 const struct mcp2510_events *events, void *ctx);
+
+/* ---- register access (one SPI transfer each) ---- */
+int mcp2510_reg_read(struct mcp2510_chip *chip, u8 addr, u8 *buf,
+		     unsigned int len);
+int mcp2510_reg_write(struct mcp2510_chip *chip, u8 addr, const u8 *buf,
+		      unsigned int len);
+int mcp2510_reg_modify(struct mcp2510_chip *chip, u8 addr, u8 mask, u8 val);
+int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status);
+int mcp2510_rts(struct mcp2510_chip *chip, u8 slots);
+
+/* ---- bring-up and modes ---- */
+/* RESET, start-up wait, check the chip answers: -ENODEV when it does not. */
+int mcp2510_hw_reset(struct mcp2510_chip *chip);
+/* Request MCP2510_MODE_*, poll CANSTAT.OPMOD: -ETIMEDOUT if it never comes. */
+int mcp2510_set_mode(struct mcp2510_chip *chip, u8 mode);
+int mcp2510_sleep(struct mcp2510_chip *chip);
+int mcp2510_wake(struct mcp2510_chip *chip);
+
+/* ---- bit timing ---- */
+/* Check @bt against the chip and AN739's rules and encode CNF1..CNF3. */
+int mcp2510_bittiming_encode(const struct can_bittiming *bt, u32 ctrlmode,
+			     u8 cnf[3]);
+/*
+ * Choose the timing the Linux kernel's calculator would choose for
+ * @bt->bitrate and @bt->sample_point (tenths of a percent, 0 for the CiA
+ * default) at @clock_hz (the CAN clock: oscillator / 2).  For userspace,
+ * where no kernel calculator runs; the kernel module does not use it.
+ */
+int mcp2510_bittiming_calc(u32 clock_hz, struct can_bittiming *bt);
+/* Inverse of mcp2510_bittiming_encode(), for dumps and tests. */
+void mcp2510_bittiming_decode(const u8 cnf[3], u32 osc_hz,
+			      struct can_bittiming *bt);
+
+/* ---- start/stop ---- */
+/*
+ * Reset, program bit timing (@bt in CAN-clock quanta as the kernel's
+ * calculator fills it), filters, interrupt enables and @ctrlmode
+ * (CAN_CTRLMODE_LOOPBACK, _LISTENONLY, _3_SAMPLES, _ONE_SHOT,
+ * _BERR_REPORTING) and enter the operating mode.
+ */
+int mcp2510_start(struct mcp2510_chip *chip, const struct can_bittiming *bt,
+		  u32 ctrlmode);
+/* Abort pending frames (tx_aborted for each), mask interrupts, sleep. */
+int mcp2510_stop(struct mcp2510_chip *chip);
+/* Bus-off recovery or a manual restart: re-enter the operating mode. */
+int mcp2510_restart(struct mcp2510_chip *chip);
+/* Program masks and filters; the chip must be stopped or in config mode. */
+int mcp2510_filters_apply(struct mcp2510_chip *chip,
+			  const struct mcp2510_filters *f);
+
+/* ---- transmit ---- */
+/* Free TX buffers; the caller stops its queue at 0. */
+unsigned int mcp2510_tx_free(const struct mcp2510_chip *chip);
+/* Load @cf into a free buffer and request it; returns the slot used. */
+int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
+
+/* ---- interrupt ---- */
+/*
+ * Handle what the chip flags, raising events.  With a level-triggered INT
+ * one pass is enough (the line fires again while anything is pending);
+ * with chip->irq_edge set it loops until nothing is pending.  The loop is
+ * bounded: a chip that never stops asserting returns -EAGAIN and counts an
+ * irq storm.  Returns the number of flags handled.
+ */
+int mcp2510_irq_handle(struct mcp2510_chip *chip);
+
+/* ---- state, dump, pins ---- */
+int mcp2510_berr_counter(struct mcp2510_chip *chip,
+			 struct can_berr_counter *bec);
+/* Whole register file, MCP2510_REGDUMP_LEN bytes, one sequential READ. */
+int mcp2510_regs_dump(struct mcp2510_chip *chip, u8 *buf);
+/* RX0BF/RX1BF as outputs, TX0RTS..TX2RTS as inputs. */
+int mcp2510_pin_bf_set(struct mcp2510_chip *chip, unsigned int n, bool level);
+int mcp2510_pin_rts_get(struct mcp2510_chip *chip, unsigned int n);
+
+#endif /* MCP2510_CORE_H */
