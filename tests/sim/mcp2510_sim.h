@@ -1,0 +1,264 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Register-accurate model of the Microchip MCP2510 / MCP2515 CAN controller
+ * and of the CAN bus that joins several of them.
+ *
+ * The model is plain C11 with no allocation and no libc beyond memcpy and
+ * memset, so the same source runs under cmocka, behind the userspace
+ * transport and inside the simulated-SPI kernel module.  Every object is
+ * allocated by the caller; the struct members are private by convention
+ * (read them only through the functions below).
+ *
+ * Time: the bus owns a clock in nanoseconds.  SPI transfers happen
+ * instantly at the current bus time; sim_bus_advance() runs everything that
+ * takes time (start-up after reset, mode changes, frames, error frames,
+ * bus-off recovery, wake-up) as discrete events.  Nothing happens between
+ * calls, so a harness jumps to sim_bus_next_event() or advances by the time
+ * a real driver would have waited.
+ *
+ * Transmit requests made at the same bus time contend in one arbitration:
+ * a frame starts at the first sim_bus_advance() after a request, never
+ * inside the SPI call that made it.
+ *
+ * Start-up: after power-on or a RESET instruction (taking effect when chip
+ * select rises) the chip is not ready for 128 oscillator cycles
+ * (SIM_STARTUP_CYCLES, DS21291 "oscillator start-up timer", AN739
+ * "wait the required oscillator startup time").  During that time a
+ * transfer is ignored: it has no effect and MISO reads 0xff (the pin is
+ * high impedance and the board's pull-up wins).  Advance the bus by
+ * sim_chip_startup_ns() before talking to a freshly reset chip.
+ *
+ * Unknown instructions (including the MCP2515-only ones on an MCP2510) and
+ * unpowered chips behave the same way: no effect, MISO reads 0xff.
+ */
+#ifndef MCP2510_SIM_H
+#define MCP2510_SIM_H
+
+#include "mcp2510_compat.h"
+#include <linux/can/mcp2510.h>
+
+#define SIM_MAX_NODES			8
+#define SIM_PHANTOM_QUEUE		16
+#define SIM_STARTUP_CYCLES		128
+/* a bus record's sender when the phantom node sent the frame */
+#define SIM_NODE_PHANTOM		(-1)
+
+enum sim_variant { SIM_MCP2510, SIM_MCP2515 };
+
+/* Output pins, active low: a level of true means the pin is high. */
+enum sim_pin { SIM_PIN_INT, SIM_PIN_RX0BF, SIM_PIN_RX1BF, SIM_PIN_COUNT };
+
+struct sim_bus;
+struct sim_chip;
+
+/* ---- Bus monitor ------------------------------------------------------- */
+
+enum sim_record_kind {
+	SIM_REC_FRAME,		/* a frame went through without error */
+	SIM_REC_ERROR,		/* a frame was destroyed by an error frame */
+};
+
+enum sim_error_cause {
+	SIM_ERR_NONE,
+	SIM_ERR_ACK,		/* nobody acknowledged (transmitter's ACK error) */
+	SIM_ERR_BITRATE,	/* a node at another bit rate flagged the frame */
+	SIM_ERR_INJECTED,	/* sim_bus_faults.bus_errors */
+};
+
+struct sim_bus_record {
+	enum sim_record_kind kind;
+	enum sim_error_cause cause;
+	int sender;		/* node index (sim_bus_attach order) or SIM_NODE_PHANTOM */
+	struct can_frame frame;	/* can_id carries CAN_EFF_FLAG / CAN_RTR_FLAG */
+	u32 bitrate;		/* the sender's bit rate, bit/s, rounded */
+	u32 bits;		/* bit times the bus was busy, incl. intermission */
+	u64 start_ns;		/* start of frame */
+	u64 end_ns;		/* end of intermission: the bus is free again */
+	bool acked;
+};
+
+/* ---- Counters and faults ------------------------------------------------ */
+
+struct sim_counters {
+	u64 spi_transfers;	/* chip-select-low periods */
+	u64 spi_bytes;
+	u64 spi_ignored;	/* transfers with no effect: start-up, unpowered, unknown */
+	u64 frames_tx;		/* frames sent without error */
+	u64 frames_rx;		/* frames stored in a receive buffer */
+	u64 interrupts;		/* falling edges of INT */
+	u64 overflows;		/* frames lost because both candidate buffers were full */
+	u64 tx_errors;		/* error frames suffered as transmitter */
+	u64 rx_errors;		/* errors detected as receiver */
+	u64 arbitration_lost;
+	u64 bus_off;		/* entries into bus-off */
+};
+
+/*
+ * Per-chip faults.  Write the fields directly (sim_chip_faults()); the
+ * model decrements spi_corrupt as it uses it up.
+ */
+struct sim_chip_faults {
+	u32 spi_corrupt;	/* the next N transfers return MISO with bits flipped */
+	u8 spi_corrupt_xor;	/* which bits flip in every MISO byte; 0 means 0xa5 */
+	u64 wake_delay_ns;	/* "slow wake": extra time from wake-up cause to listen-only */
+	u64 mode_delay_ns;	/* "slow mode change": REQOP write to CANSTAT.OPMOD */
+};
+
+/*
+ * Per-bus faults (sim_bus_faults()).  bus_errors counts down per frame
+ * corrupted; every node then detects an error, as for a CRC error.
+ */
+struct sim_bus_faults {
+	u32 bus_errors;		/* corrupt the next N frames */
+	bool no_ack;		/* no node, not even the phantom, drives the ACK slot */
+};
+
+/* ---- Objects (members private) ------------------------------------------ */
+
+struct sim_tx_state {
+	bool active;		/* this chip's frame is on the bus now */
+	u8 buf;			/* which TX buffer */
+};
+
+struct sim_chip {
+	struct sim_bus *bus;
+	int node;			/* index on the bus, -1 when not attached */
+	enum sim_variant variant;
+	u32 osc_hz;
+	bool powered;
+	u8 regs[MCP2510_REG_COUNT];
+	u64 ready_at;			/* end of start-up */
+	/* operating mode */
+	u8 opmode;			/* what CANSTAT.OPMOD shows */
+	bool mode_pending;
+	u64 mode_at;			/* when a requested mode takes effect */
+	bool wake_pending;
+	u64 wake_at;
+	/* fault confinement */
+	u16 tec;			/* may exceed 255 internally: bus-off */
+	u16 rec;
+	bool bus_off;
+	u32 recovery_count;		/* sequences of 11 recessive bits seen in bus-off */
+	u64 recovery_idle_since;	/* start of idle time not yet counted */
+	/* transmit */
+	struct sim_tx_state tx;
+	bool tx_attempted[MCP2510_TXB_COUNT];	/* OSM: one try per request */
+	/* SPI */
+	u8 rx_clear_at_cs;		/* READ RX BUFFER: RXnIF to clear at CS high */
+	/* pins */
+	bool rts_level[MCP2510_TXB_COUNT];
+	bool pin_level[SIM_PIN_COUNT];
+	void (*pin_cb)(void *ctx, struct sim_chip *chip, enum sim_pin pin, bool level);
+	void *pin_ctx;
+	struct sim_chip_faults faults;
+	struct sim_counters counters;
+};
+
+struct sim_phantom {
+	bool attached;
+	u32 bitrate;			/* 0: the first chip's */
+	struct can_frame queue[SIM_PHANTOM_QUEUE];
+	u32 queue_rate[SIM_PHANTOM_QUEUE];
+	unsigned int head, count;
+	struct can_frame flood;		/* template of the flood in progress */
+	u32 flood_rate;
+	u32 flood_left, flood_sent;
+};
+
+struct sim_bus {
+	u64 now;
+	struct sim_chip *chips[SIM_MAX_NODES];
+	unsigned int nchips;
+	/* the frame on the bus */
+	bool busy;
+	bool arbitration_pending;	/* a request waits for the next advance */
+	u64 busy_until;
+	struct sim_bus_record cur;
+	int cur_sender;
+	u64 idle_since;
+	struct sim_phantom phantom;
+	struct sim_bus_faults faults;
+	void (*monitor)(void *ctx, const struct sim_bus_record *rec);
+	void *monitor_ctx;
+};
+
+/* ---- Bus ---------------------------------------------------------------- */
+
+void sim_bus_init(struct sim_bus *bus);
+/* Returns 0, -ENOSPC when SIM_MAX_NODES chips are attached, -EBUSY if attached. */
+int sim_bus_attach(struct sim_bus *bus, struct sim_chip *chip);
+/* Run bus time forward by ns, processing every event on the way. */
+void sim_bus_advance(struct sim_bus *bus, u64 ns);
+/* Run bus time forward to an absolute time (no-op if in the past). */
+void sim_bus_advance_to(struct sim_bus *bus, u64 when);
+u64 sim_bus_now(const struct sim_bus *bus);
+/* Absolute time of the next scheduled change, U64_MAX when nothing is pending. */
+u64 sim_bus_next_event(const struct sim_bus *bus);
+bool sim_bus_idle(const struct sim_bus *bus);
+void sim_bus_set_monitor(struct sim_bus *bus,
+			 void (*fn)(void *ctx, const struct sim_bus_record *rec),
+			 void *ctx);
+struct sim_bus_faults *sim_bus_faults(struct sim_bus *bus);
+
+/* ---- Chip --------------------------------------------------------------- */
+
+/* Power-on state, powered and in start-up.  -EINVAL for a bad variant or osc. */
+int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz);
+/* One chip-select-low period: len bytes out on MOSI (tx), in on MISO (rx, may be NULL). */
+void sim_chip_spi(struct sim_chip *chip, const u8 *tx, u8 *rx, size_t len);
+bool sim_chip_pin(const struct sim_chip *chip, enum sim_pin pin);
+void sim_chip_set_pin_cb(struct sim_chip *chip,
+			 void (*cb)(void *ctx, struct sim_chip *chip,
+				    enum sim_pin pin, bool level),
+			 void *ctx);
+/* Drive the TXnRTS input n (0..2); the pins have pull-ups, so true is idle. */
+void sim_chip_set_rts(struct sim_chip *chip, unsigned int n, bool level);
+/* Power loss: MISO reads 0xff, pins float high.  Power on: reset state and start-up. */
+void sim_chip_power(struct sim_chip *chip, bool on);
+const struct sim_counters *sim_chip_counters(const struct sim_chip *chip);
+struct sim_chip_faults *sim_chip_faults(struct sim_chip *chip);
+
+/* Read-only inspection, no side effects (not an SPI transfer). */
+u8 sim_chip_peek(const struct sim_chip *chip, u8 addr);
+unsigned int sim_chip_opmode(const struct sim_chip *chip);	/* MCP2510_MODE_* */
+unsigned int sim_chip_tec(const struct sim_chip *chip);		/* 0..256+ */
+unsigned int sim_chip_rec(const struct sim_chip *chip);
+bool sim_chip_bus_off(const struct sim_chip *chip);
+bool sim_chip_ready(const struct sim_chip *chip);		/* start-up over, powered */
+u64 sim_chip_startup_ns(const struct sim_chip *chip);		/* 128 osc cycles */
+/* Bit rate from CNF1-3 and the oscillator, bit/s rounded; 0 if CNF is invalid. */
+u32 sim_chip_bitrate(const struct sim_chip *chip);
+
+/* ---- Phantom node: a bus participant with no chip ---------------------- */
+
+/*
+ * The phantom acknowledges every frame sent at its bit rate (bitrate 0:
+ * whatever the first attached chip uses at the time), transmits with
+ * normal arbitration, retries after errors and never leaves error-active.
+ * A node at another bit rate makes it send error frames, like any node.
+ */
+void sim_phantom_attach(struct sim_bus *bus, u32 bitrate);
+void sim_phantom_detach(struct sim_bus *bus);
+/* Queue one frame (attaches the phantom).  0, -ENOSPC, -EINVAL. */
+int sim_phantom_send(struct sim_bus *bus, const struct can_frame *cf, u32 bitrate);
+/*
+ * Send count frames back to back at bus speed.  Frame k (from 0) is cf
+ * with its first min(len, 4) data bytes, read as a little-endian number,
+ * increased by k, so the frames are distinguishable; identifier and length
+ * stay.  Queued frames go first.  0, -EBUSY (a flood runs), -EINVAL.
+ */
+int sim_phantom_flood(struct sim_bus *bus, const struct can_frame *cf,
+		      u32 count, u32 bitrate);
+/* Frames the phantom still has to send, queue and flood together. */
+u32 sim_phantom_pending(const struct sim_bus *bus);
+
+/* ---- Helpers shared with the tests --------------------------------------- */
+
+/*
+ * Bits the frame occupies on the wire without errors: SOF through EOF with
+ * the stuff bits its actual bit pattern (incl. CRC) needs, plus the 3-bit
+ * intermission.
+ */
+u32 sim_frame_bits(const struct can_frame *cf);
+
+#endif /* MCP2510_SIM_H */
