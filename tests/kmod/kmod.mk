@@ -1,0 +1,1 @@
+# tests/kmod/kmod.mk: filled in by its area
