@@ -1,1 +1,55 @@
-# dts/dts.mk: filled in by its area
+# dts/dts.mk: device-tree overlays, the binding, and their checks.
+#
+#   make dt-overlays   compile dts/*-overlay.dts to build/dts/overlays/*.dtbo
+#   make dt-check      compile, apply, validate every overlay against the
+#                      binding, and make sure the broken ones in
+#                      dts/test/bad/ are rejected (see dts/dt-check.sh)
+#
+# dt-validate comes from dtschema on PyPI, pinned and installed into a venv
+# under build/, so that every machine validates with the same schemas and
+# prints the same messages (dts/test/bad/ matches on them).
+
+DTS_PACKAGES := device-tree-compiler python3-venv
+
+DTS_DIR := $(TOP)/dts
+DTS_OUT := $(BUILD)/dts
+DTS_OVERLAYS := $(patsubst $(DTS_DIR)/%-overlay.dts,$(DTS_OUT)/overlays/%.dtbo,\
+	$(wildcard $(DTS_DIR)/*-overlay.dts))
+
+DTSCHEMA_VERSION ?= 2026.9
+DTSCHEMA_PYTHON ?= python3
+DTSCHEMA_VENV := $(BUILD)/dtschema-venv
+DTSCHEMA_STAMP := $(DTSCHEMA_VENV)/.dtschema-$(DTSCHEMA_VERSION)
+
+.PHONY: dt-deps dt-overlays dt-check dt-clean
+
+dt-deps:
+	@$(ENSURE) $(DTS_PACKAGES)
+
+# Warnings fail the build: dtc reports them on stderr and exits 0.
+$(DTS_OUT)/overlays/%.dtbo: $(DTS_DIR)/%-overlay.dts | dt-deps
+	@mkdir -p $(@D)
+	@echo "  DTC     $(@F)"
+	@dtc -@ -I dts -O dtb -o $@ $< 2>$@.log && [ ! -s $@.log ] || \
+		{ cat $@.log >&2; rm -f $@ $@.log; exit 1; }
+	@rm -f $@.log
+
+dt-overlays: $(DTS_OVERLAYS)
+
+# The stamp names the version, so changing DTSCHEMA_VERSION reinstalls.
+$(DTSCHEMA_STAMP): | dt-deps
+	@echo "dt-check: installing dtschema $(DTSCHEMA_VERSION) into $(DTSCHEMA_VENV)"
+	@rm -rf $(DTSCHEMA_VENV)
+	@$(DTSCHEMA_PYTHON) -m venv $(DTSCHEMA_VENV)
+	@$(DTSCHEMA_VENV)/bin/pip install -q --disable-pip-version-check \
+		dtschema==$(DTSCHEMA_VERSION)
+	@touch $@
+
+dt-check: $(DTSCHEMA_STAMP) | dt-deps
+	@rm -rf $(DTS_OUT)
+	@$(DTS_DIR)/dt-check.sh $(DTS_OUT) $(DTSCHEMA_VENV)/bin
+
+dt-clean:
+	rm -rf $(DTS_OUT) $(DTSCHEMA_VENV)
+
+CHECK_STEPS += dt-check
