@@ -164,7 +164,10 @@ check_overrides() (
 	ovnodes=$(nodes "$dtbo")
 	for param in $params; do
 		targets=$(override_targets "$dtbo" "$param")
-		case $targets in *bad*) echo "$param: not <&label>, \"prop:offset\" pairs"; exit 1 ;; esac
+		if echo "$targets" | grep -qx bad; then
+			echo "$param: not <&label>, \"prop:offset\" pairs"
+			exit 1
+		fi
 		value=
 		echo "$targets" | while read -r ph spec; do
 			prop=${spec%%:*}
@@ -216,8 +219,12 @@ check_overlay() (
 	run "$out/log/$name.dump" dtc $DUMP_FLAGS -I dtb -O dts -o "$out/merged/$name.dts" "$merged" || exit 1
 	validate "$merged" || exit 1
 	check_can_node "$merged" || exit 1
+	# Raspberry Pi overlays (compatible "brcm,bcm2835") take parameters.
 	if fdtget -l "$dtbo" / | grep -qx __overrides__; then
 		check_overrides "$name" "$dtbo" "$merged" || exit 1
+	elif [ "$(fdtget -d none "$dtbo" / compatible)" = brcm,bcm2835 ]; then
+		echo "Raspberry Pi overlay without __overrides__ (parameters)"
+		exit 1
 	fi
 )
 
