@@ -148,11 +148,11 @@ override_targets() {
 	}'
 }
 
-# check_overrides NAME DTBO MERGED: each parameter's targets exist; setting the
+# check_overrides NAME DTBO: each parameter's targets exist; setting the
 # parameter (as the firmware would: patch the overlay, then apply it) shows up
 # in the merged tree.
 check_overrides() (
-	name=$1 dtbo=$2 merged=$3
+	name=$1 dtbo=$2
 	params=$(fdtget -p "$dtbo" /__overrides__)
 	for want in oscillator interrupt spimaxfrequency; do
 		echo "$params" | grep -qx "$want" || { echo "parameter $want missing"; exit 1; }
@@ -221,7 +221,7 @@ check_overlay() (
 	check_can_node "$merged" || exit 1
 	# Raspberry Pi overlays (compatible "brcm,bcm2835") take parameters.
 	if fdtget -l "$dtbo" / | grep -qx __overrides__; then
-		check_overrides "$name" "$dtbo" "$merged" || exit 1
+		check_overrides "$name" "$dtbo" || exit 1
 	elif [ "$(fdtget -d none "$dtbo" / compatible)" = brcm,bcm2835 ]; then
 		echo "Raspberry Pi overlay without __overrides__ (parameters)"
 		exit 1
