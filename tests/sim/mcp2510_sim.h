@@ -116,8 +116,11 @@ struct sim_bus_faults {
 /* ---- Objects (members private) ------------------------------------------ */
 
 struct sim_tx_state {
-	bool active;		/* this chip's frame is on the bus now */
+	bool active;		/* a frame of this chip is on the bus or in the loop */
+	bool loopback;		/* ... inside the chip (loopback mode) */
+	bool abort;		/* aborted while in flight: do not retry */
 	u8 buf;			/* which TX buffer */
+	u64 end_at;		/* loopback: when the frame is complete */
 };
 
 struct sim_chip {
@@ -135,16 +138,14 @@ struct sim_chip {
 	bool wake_pending;
 	u64 wake_at;
 	/* fault confinement */
-	u16 tec;			/* may exceed 255 internally: bus-off */
+	u16 tec;			/* reaches 256 internally: bus-off */
 	u16 rec;
 	bool bus_off;
 	u32 recovery_count;		/* sequences of 11 recessive bits seen in bus-off */
 	u64 recovery_idle_since;	/* start of idle time not yet counted */
-	/* transmit */
+	/* transmit and receive */
 	struct sim_tx_state tx;
-	bool tx_attempted[MCP2510_TXB_COUNT];	/* OSM: one try per request */
-	/* SPI */
-	u8 rx_clear_at_cs;		/* READ RX BUFFER: RXnIF to clear at CS high */
+	u8 rx_status[MCP2510_RXB_COUNT];	/* RX STATUS bits 4:0 per buffer */
 	/* pins */
 	bool rts_level[MCP2510_TXB_COUNT];
 	bool pin_level[SIM_PIN_COUNT];
@@ -158,10 +159,10 @@ struct sim_phantom {
 	bool attached;
 	u32 bitrate;			/* 0: the first chip's */
 	struct can_frame queue[SIM_PHANTOM_QUEUE];
-	u32 queue_rate[SIM_PHANTOM_QUEUE];
+	u32 queue_rate[SIM_PHANTOM_QUEUE];	/* bit time, ns */
 	unsigned int head, count;
 	struct can_frame flood;		/* template of the flood in progress */
-	u32 flood_rate;
+	u32 flood_rate;			/* bit time, ns */
 	u32 flood_left, flood_sent;
 };
 
@@ -171,11 +172,10 @@ struct sim_bus {
 	unsigned int nchips;
 	/* the frame on the bus */
 	bool busy;
-	bool arbitration_pending;	/* a request waits for the next advance */
 	u64 busy_until;
 	struct sim_bus_record cur;
 	int cur_sender;
-	u64 idle_since;
+	u32 cur_ns;			/* the sender's bit time */
 	struct sim_phantom phantom;
 	struct sim_bus_faults faults;
 	void (*monitor)(void *ctx, const struct sim_bus_record *rec);
@@ -202,7 +202,11 @@ struct sim_bus_faults *sim_bus_faults(struct sim_bus *bus);
 
 /* ---- Chip --------------------------------------------------------------- */
 
-/* Power-on state, powered and in start-up.  -EINVAL for a bad variant or osc. */
+/*
+ * Power-on state, powered.  The start-up time runs from sim_bus_attach()
+ * (a chip on no bus has no clock and is ready at once).  osc_hz must be
+ * 1 kHz..100 MHz, else -EINVAL.
+ */
 int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz);
 /* One chip-select-low period: len bytes out on MOSI (tx), in on MISO (rx, may be NULL). */
 void sim_chip_spi(struct sim_chip *chip, const u8 *tx, u8 *rx, size_t len);
@@ -226,7 +230,11 @@ unsigned int sim_chip_rec(const struct sim_chip *chip);
 bool sim_chip_bus_off(const struct sim_chip *chip);
 bool sim_chip_ready(const struct sim_chip *chip);		/* start-up over, powered */
 u64 sim_chip_startup_ns(const struct sim_chip *chip);		/* 128 osc cycles */
-/* Bit rate from CNF1-3 and the oscillator, bit/s rounded; 0 if CNF is invalid. */
+/*
+ * Bit rate from CNF1-3 and the oscillator, bit/s rounded.  Every CNF
+ * value gives some bit time (the chip does not refuse any), so this is
+ * never 0 for a powered chip.
+ */
 u32 sim_chip_bitrate(const struct sim_chip *chip);
 
 /* ---- Phantom node: a bus participant with no chip ---------------------- */

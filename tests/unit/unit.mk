@@ -1,1 +1,82 @@
-# tests/unit/unit.mk: filled in by its area
+# tests/unit/unit.mk: the cmocka suites.
+#
+#   make unit        build build/unit/<suite> for every suite and run them all
+#   make unit-asan   the same under ASan/UBSan, in build/unit-asan/
+#   make coverage    the same with --coverage in build/coverage/, then the
+#                    line coverage of the chip model (tests/sim/*.c)
+#
+# Adding a suite is one line here, plus its source list when it links more
+# than tests/unit/<suite>.c:
+#
+#   UNIT_SUITES += test_core_tx
+#   test_core_tx_SRCS := driver/core/tx.c $(UNIT_SIM_SRCS)
+#
+# Paths are relative to the top directory.  $(UNIT_SIM_SRCS) is the chip
+# model with the SPI/frame helpers of tests/unit/sim_helpers.h.
+# A failing test fails make, after every suite has run.
+
+UNIT_DIR := tests/unit
+UNIT_CFLAGS := $(CSTD) $(WARN) -g -I$(TOP)/uapi -I$(TOP)/driver/core \
+	       -I$(TOP)/tests/sim -I$(TOP)/$(UNIT_DIR)
+UNIT_LDLIBS := -lcmocka
+UNIT_SIM_SRCS := $(SIM_SRCS) $(UNIT_DIR)/sim_helpers.c
+
+# ---- suites -------------------------------------------------------------
+UNIT_SUITES += test_sim_spi
+test_sim_spi_SRCS := $(UNIT_SIM_SRCS)
+
+# ---- rules (no need to touch these to add a suite) ------------------------
+UNIT_FLAVOURS := unit unit-asan coverage
+UNIT_FLAGS_unit :=
+UNIT_FLAGS_unit-asan := $(SANITIZE)
+UNIT_FLAGS_coverage := --coverage -O0
+
+# objects of suite $(2) in flavour $(1)
+unit_objs = $(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(UNIT_DIR)/$(2).c $($(2)_SRCS))
+
+define UNIT_FLAVOUR_RULES
+$(BUILD)/$(1)/obj/%.o: $(TOP)/%.c
+	@mkdir -p $$(@D)
+	$$(CC) $$(UNIT_CFLAGS) $$(UNIT_FLAGS_$(1)) -MMD -MP -c $$< -o $$@
+
+.PHONY: $(1)-build
+$(1)-build: $(addprefix $(BUILD)/$(1)/,$(UNIT_SUITES))
+endef
+
+define UNIT_SUITE_RULES
+$(BUILD)/$(1)/$(2): $(call unit_objs,$(1),$(2)) | unit-deps
+	$$(CC) $$(UNIT_FLAGS_$(1)) $$^ $$(UNIT_LDLIBS) -o $$@
+-include $(patsubst %.o,%.d,$(call unit_objs,$(1),$(2)))
+endef
+
+$(foreach f,$(UNIT_FLAVOURS),$(eval $(call UNIT_FLAVOUR_RULES,$(f))))
+$(foreach f,$(UNIT_FLAVOURS),$(foreach s,$(UNIT_SUITES),\
+	$(eval $(call UNIT_SUITE_RULES,$(f),$(s)))))
+
+# every suite runs; make fails at the end if one did
+unit_run = fail=; for t in $(UNIT_SUITES); do \
+		$(BUILD)/$(1)/$$t || fail="$$fail $$t"; \
+	done; \
+	if [ -n "$$fail" ]; then echo "$(1): FAILED:$$fail" >&2; exit 1; fi; \
+	echo "$(1): all suites passed ($(words $(UNIT_SUITES)) suites)"
+
+.PHONY: unit unit-asan coverage unit-deps
+unit-deps:
+	@[ -f /usr/include/cmocka.h ] || $(ENSURE) libcmocka-dev
+
+unit: unit-build
+	@$(call unit_run,unit)
+
+unit-asan: unit-asan-build
+	@ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+		$(call unit_run,unit-asan)
+
+COVERAGE_SIM_SRCS := $(SIM_SRCS)
+coverage: coverage-build
+	@find $(BUILD)/coverage -name '*.gcda' -delete
+	@$(call unit_run,coverage)
+	@command -v gcovr >/dev/null 2>&1 || $(ENSURE) gcovr
+	@cd $(TOP) && gcovr --root $(TOP) $(addprefix --filter ,$(COVERAGE_SIM_SRCS)) \
+		--object-directory $(BUILD)/coverage $(BUILD)/coverage
+
+CHECK_STEPS += unit unit-asan

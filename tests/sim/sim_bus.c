@@ -1,0 +1,487 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The CAN bus joining the simulated chips and the phantom node: event
+ * loop, arbitration, acknowledgement, error frames and their effect on
+ * the error counters (CAN 2.0B part B, chapter 8 "fault confinement").
+ *
+ * A frame is decided when it starts: who sends (arbitration), whether it
+ * will be acknowledged and whether some node will destroy it with an error
+ * frame.  That fixes how long the bus is busy; the effects on every node
+ * are applied when that time has passed.
+ */
+#include "sim_private.h"
+
+/* where a node at another bit rate flags the frame: early, in arbitration */
+#define SIM_MISMATCH_ERROR_BIT	8
+/* a runaway guard: no instant needs more steps than this */
+#define SIM_MAX_STEPS_PER_INSTANT	1000
+#define SIM_NO_SENDER		(-2)
+
+static u32 sim_rate_to_ns(u32 bitrate)
+{
+	return bitrate ? (SIM_NS_PER_SEC + bitrate / 2) / bitrate : 0;
+}
+
+static u32 sim_ns_to_rate(u32 ns)
+{
+	return ns ? (SIM_NS_PER_SEC + ns / 2) / ns : 0;
+}
+
+void sim_bus_init(struct sim_bus *bus)
+{
+	memset(bus, 0, sizeof(*bus));
+	bus->cur_sender = SIM_NO_SENDER;
+}
+
+int sim_bus_attach(struct sim_bus *bus, struct sim_chip *chip)
+{
+	if (chip->bus)
+		return -EBUSY;
+	if (bus->nchips >= SIM_MAX_NODES)
+		return -ENOSPC;
+	chip->bus = bus;
+	chip->node = bus->nchips;
+	bus->chips[bus->nchips++] = chip;
+	/* power-on start-up runs from the moment the chip joins the clock */
+	if (chip->powered)
+		chip->ready_at = bus->now + sim_chip_startup_ns(chip);
+	return 0;
+}
+
+u64 sim_bus_now(const struct sim_bus *bus)
+{
+	return bus->now;
+}
+
+bool sim_bus_busy(const struct sim_bus *bus)
+{
+	return bus->busy;
+}
+
+bool sim_bus_idle(const struct sim_bus *bus)
+{
+	return !bus->busy;
+}
+
+void sim_bus_set_monitor(struct sim_bus *bus,
+			 void (*fn)(void *ctx, const struct sim_bus_record *rec),
+			 void *ctx)
+{
+	bus->monitor = fn;
+	bus->monitor_ctx = ctx;
+}
+
+struct sim_bus_faults *sim_bus_faults(struct sim_bus *bus)
+{
+	return &bus->faults;
+}
+
+/* ---- Phantom node ---------------------------------------------------------- */
+
+/* bit time the phantom listens at; 0 means it follows whatever is sent */
+static u32 sim_phantom_rx_ns(const struct sim_bus *bus)
+{
+	if (bus->phantom.bitrate)
+		return sim_rate_to_ns(bus->phantom.bitrate);
+	return bus->nchips ? sim_chip_bit_ns(bus->chips[0]) : 0;
+}
+
+static u32 sim_phantom_pending_count(const struct sim_bus *bus)
+{
+	const struct sim_phantom *ph = &bus->phantom;
+
+	return ph->attached ? ph->count + ph->flood_left : 0;
+}
+
+u32 sim_phantom_pending(const struct sim_bus *bus)
+{
+	return sim_phantom_pending_count(bus);
+}
+
+/* frame k of a flood: the first min(len, 4) data bytes, little endian, + k */
+static void sim_flood_frame(const struct sim_phantom *ph, struct can_frame *cf)
+{
+	unsigned int n = ph->flood.len < 4 ? ph->flood.len : 4, i;
+	u32 v = 0;
+
+	*cf = ph->flood;
+	for (i = 0; i < n; i++)
+		v |= (u32)cf->data[i] << (8 * i);
+	v += ph->flood_sent;
+	for (i = 0; i < n; i++)
+		cf->data[i] = v >> (8 * i);
+}
+
+/* The phantom's next frame and its bit time; false if it has none. */
+static bool sim_phantom_peek(const struct sim_bus *bus, struct can_frame *cf,
+			     u32 *ns)
+{
+	const struct sim_phantom *ph = &bus->phantom;
+
+	if (!ph->attached)
+		return false;
+	if (ph->count) {
+		*cf = ph->queue[ph->head];
+		*ns = ph->queue_rate[ph->head];
+		return true;
+	}
+	if (ph->flood_left) {
+		sim_flood_frame(ph, cf);
+		*ns = ph->flood_rate;
+		return true;
+	}
+	return false;
+}
+
+static void sim_phantom_sent(struct sim_bus *bus)
+{
+	struct sim_phantom *ph = &bus->phantom;
+
+	if (ph->count) {
+		ph->head = (ph->head + 1) % SIM_PHANTOM_QUEUE;
+		ph->count--;
+	} else if (ph->flood_left) {
+		ph->flood_left--;
+		ph->flood_sent++;
+	}
+}
+
+void sim_phantom_attach(struct sim_bus *bus, u32 bitrate)
+{
+	bus->phantom.attached = true;
+	bus->phantom.bitrate = bitrate;
+}
+
+void sim_phantom_detach(struct sim_bus *bus)
+{
+	memset(&bus->phantom, 0, sizeof(bus->phantom));
+}
+
+/* bit time for a phantom frame: its own rate, or the first chip's */
+static int sim_phantom_frame_ns(struct sim_bus *bus, const struct can_frame *cf,
+				u32 bitrate, u32 *ns)
+{
+	if (!cf || cf->len > CAN_MAX_DLEN || bitrate > SIM_NS_PER_SEC)
+		return -EINVAL;
+	*ns = bitrate ? sim_rate_to_ns(bitrate) :
+	      bus->nchips ? sim_chip_bit_ns(bus->chips[0]) : 0;
+	if (!*ns)
+		return -EINVAL;
+	if (!bus->phantom.attached)
+		sim_phantom_attach(bus, bitrate);
+	return 0;
+}
+
+int sim_phantom_send(struct sim_bus *bus, const struct can_frame *cf, u32 bitrate)
+{
+	struct sim_phantom *ph = &bus->phantom;
+	unsigned int slot;
+	u32 ns;
+	int ret;
+
+	if (ph->count >= SIM_PHANTOM_QUEUE)
+		return -ENOSPC;
+	ret = sim_phantom_frame_ns(bus, cf, bitrate, &ns);
+	if (ret)
+		return ret;
+	slot = (ph->head + ph->count) % SIM_PHANTOM_QUEUE;
+	ph->queue[slot] = *cf;
+	ph->queue_rate[slot] = ns;
+	ph->count++;
+	return 0;
+}
+
+int sim_phantom_flood(struct sim_bus *bus, const struct can_frame *cf,
+		      u32 count, u32 bitrate)
+{
+	struct sim_phantom *ph = &bus->phantom;
+	u32 ns;
+	int ret;
+
+	if (ph->flood_left)
+		return -EBUSY;
+	ret = sim_phantom_frame_ns(bus, cf, bitrate, &ns);
+	if (ret)
+		return ret;
+	ph->flood = *cf;
+	ph->flood_rate = ns;
+	ph->flood_left = count;
+	ph->flood_sent = 0;
+	return 0;
+}
+
+/* ---- Arbitration -------------------------------------------------------------- */
+
+struct sim_contest {
+	int sender;		/* node index, SIM_NODE_PHANTOM, SIM_NO_SENDER */
+	int buf;
+	u32 key;
+	u32 ns;
+	struct can_frame cf;
+};
+
+static bool sim_bus_has_contender(const struct sim_bus *bus)
+{
+	unsigned int i;
+
+	if (sim_phantom_pending_count(bus))
+		return true;
+	for (i = 0; i < bus->nchips; i++)
+		if (sim_chip_tx_candidate(bus->chips[i]) >= 0)
+			return true;
+	return false;
+}
+
+/*
+ * Lowest arbitration field wins.  Two senders with identical fields
+ * cannot be told apart on a real bus; the model lets the lower node
+ * index win and the phantom lose such ties.
+ */
+static void sim_bus_arbitrate(struct sim_bus *bus, struct sim_contest *win)
+{
+	struct can_frame cf;
+	unsigned int i;
+	u32 ns;
+
+	win->sender = SIM_NO_SENDER;
+	for (i = 0; i < bus->nchips; i++) {
+		struct sim_chip *chip = bus->chips[i];
+		int buf = sim_chip_tx_candidate(chip);
+		u32 key;
+
+		if (buf < 0)
+			continue;
+		sim_chip_tx_frame(chip, buf, &cf);
+		key = sim_frame_arbitration_key(&cf);
+		if (win->sender != SIM_NO_SENDER && key >= win->key)
+			continue;
+		win->sender = i;
+		win->buf = buf;
+		win->key = key;
+		win->cf = cf;
+		win->ns = sim_chip_bit_ns(chip);
+	}
+	if (sim_phantom_peek(bus, &cf, &ns) &&
+	    (win->sender == SIM_NO_SENDER ||
+	     sim_frame_arbitration_key(&cf) < win->key)) {
+		win->sender = SIM_NODE_PHANTOM;
+		win->key = sim_frame_arbitration_key(&cf);
+		win->cf = cf;
+		win->ns = ns;
+	}
+	/* AN739: losers re-arbitrate later, picking their best buffer again */
+	for (i = 0; i < bus->nchips; i++)
+		if ((int)i != win->sender &&
+		    sim_chip_tx_candidate(bus->chips[i]) >= 0)
+			sim_chip_tx_lost(bus->chips[i]);
+}
+
+/* ---- Frames -------------------------------------------------------------------- */
+
+struct sim_verdict {
+	bool acked;
+	bool flagged;		/* an error-active node at another rate objects */
+};
+
+/* How the other nodes react to a frame sent at ns per bit. */
+static void sim_bus_judge(struct sim_bus *bus, int sender, u32 ns,
+			  struct sim_verdict *v)
+{
+	unsigned int i;
+
+	v->acked = false;
+	v->flagged = false;
+	for (i = 0; i < bus->nchips; i++) {
+		struct sim_chip *chip = bus->chips[i];
+
+		if ((int)i == sender)
+			continue;
+		sim_chip_bus_activity(chip);
+		if (!sim_chip_listening(chip))
+			continue;
+		if (sim_rates_match(sim_chip_bit_ns(chip), ns)) {
+			/* listen-only nodes never drive the ACK slot */
+			if (chip->opmode == MCP2510_MODE_NORMAL)
+				v->acked = true;
+		} else if (chip->opmode == MCP2510_MODE_NORMAL &&
+			   sim_chip_error_active(chip)) {
+			v->flagged = true;
+		}
+	}
+	if (bus->phantom.attached && sender != SIM_NODE_PHANTOM) {
+		u32 pns = sim_phantom_rx_ns(bus);
+
+		if (!pns || sim_rates_match(pns, ns))
+			v->acked = true;
+		else
+			v->flagged = true;
+	}
+	if (bus->faults.no_ack)
+		v->acked = false;
+}
+
+static void sim_bus_start_frame(struct sim_bus *bus)
+{
+	struct sim_bus_record *rec = &bus->cur;
+	struct sim_frame_info info;
+	struct sim_verdict v;
+	struct sim_contest win;
+	u32 error_bit = 0;
+	unsigned int i;
+
+	sim_bus_arbitrate(bus, &win);
+	if (win.sender == SIM_NO_SENDER)
+		return;
+	sim_frame_measure(&win.cf, &info);
+	sim_bus_judge(bus, win.sender, win.ns, &v);
+
+	memset(rec, 0, sizeof(*rec));
+	rec->kind = SIM_REC_ERROR;
+	if (bus->faults.bus_errors) {
+		/* a corrupted frame fails its CRC check after the ACK delimiter */
+		bus->faults.bus_errors--;
+		rec->cause = SIM_ERR_INJECTED;
+		error_bit = info.stuffed_len + 3;
+	} else if (v.flagged) {
+		rec->cause = SIM_ERR_BITRATE;
+		error_bit = SIM_MISMATCH_ERROR_BIT;
+	} else if (!v.acked) {
+		/* the sender flags the ACK error in the ACK delimiter */
+		rec->cause = SIM_ERR_ACK;
+		error_bit = info.stuffed_len + 2;
+	} else {
+		rec->kind = SIM_REC_FRAME;
+		rec->cause = SIM_ERR_NONE;
+	}
+	rec->sender = win.sender;
+	rec->frame = win.cf;
+	rec->bitrate = sim_ns_to_rate(win.ns);
+	rec->bits = rec->cause ? error_bit + SIM_ERROR_FRAME_BITS : info.bits;
+	rec->acked = v.acked;
+	rec->start_ns = bus->now;
+	rec->end_ns = bus->now + (u64)rec->bits * win.ns;
+
+	for (i = 0; i < bus->nchips; i++)
+		sim_chip_recovery_account(bus->chips[i], bus->now);
+	bus->busy = true;
+	bus->busy_until = rec->end_ns;
+	bus->cur_sender = win.sender;
+	bus->cur_ns = win.ns;
+	if (win.sender >= 0)
+		sim_chip_tx_start(bus->chips[win.sender], win.buf);
+}
+
+/*
+ * After an ACK error an error-passive sender's flag is recessive: the
+ * receivers see a frame without error (and take it), the sender retries.
+ */
+static bool sim_bus_passive_ack_error(const struct sim_bus *bus)
+{
+	const struct sim_chip *sender;
+
+	if (bus->cur.cause != SIM_ERR_ACK || bus->cur_sender < 0)
+		return false;
+	sender = bus->chips[bus->cur_sender];
+	return !sim_chip_error_active(sender);
+}
+
+static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
+{
+	unsigned int i;
+
+	for (i = 0; i < bus->nchips; i++) {
+		struct sim_chip *chip = bus->chips[i];
+
+		if ((int)i == bus->cur_sender || !sim_chip_listening(chip))
+			continue;
+		if (valid && sim_rates_match(sim_chip_bit_ns(chip), bus->cur_ns))
+			sim_chip_rx_ok(chip, &bus->cur.frame);
+		else
+			sim_chip_rx_error(chip);
+	}
+}
+
+static void sim_bus_end_frame(struct sim_bus *bus)
+{
+	const struct sim_bus_record *rec = &bus->cur;
+	bool ok = rec->kind == SIM_REC_FRAME;
+	bool passive_ack = sim_bus_passive_ack_error(bus);
+	unsigned int i;
+
+	bus->busy = false;
+	/* ACK delimiter, EOF and intermission: 11 recessive bits for bus-off nodes */
+	for (i = 0; i < bus->nchips; i++)
+		sim_chip_recovery_frame(bus->chips[i], bus->now);
+
+	if (bus->cur_sender >= 0) {
+		struct sim_chip *sender = bus->chips[bus->cur_sender];
+
+		if (ok)
+			sim_chip_tx_end(sender, true, false);
+		else
+			sim_chip_tx_end(sender, false, !passive_ack);
+	} else if (bus->cur_sender == SIM_NODE_PHANTOM && ok) {
+		sim_phantom_sent(bus);
+	}
+	sim_bus_end_receivers(bus, ok || passive_ack);
+	bus->cur_sender = SIM_NO_SENDER;
+	if (bus->monitor)
+		bus->monitor(bus->monitor_ctx, rec);
+}
+
+/* ---- Time ------------------------------------------------------------------------ */
+
+u64 sim_bus_next_event(const struct sim_bus *bus)
+{
+	u64 t = U64_MAX;
+	unsigned int i;
+
+	if (bus->busy)
+		t = bus->busy_until;
+	else if (sim_bus_has_contender(bus))
+		t = bus->now;
+	for (i = 0; i < bus->nchips; i++)
+		t = sim_min_u64(t, sim_chip_next_event(bus->chips[i]));
+	return t;
+}
+
+/* Everything due at bus->now. */
+static void sim_bus_step(struct sim_bus *bus)
+{
+	unsigned int i;
+
+	if (bus->busy && bus->now >= bus->busy_until)
+		sim_bus_end_frame(bus);
+	for (i = 0; i < bus->nchips; i++)
+		sim_chip_run_events(bus->chips[i]);
+	if (!bus->busy)
+		sim_bus_start_frame(bus);
+}
+
+void sim_bus_advance_to(struct sim_bus *bus, u64 when)
+{
+	unsigned int same_instant = 0;
+
+	while (same_instant < SIM_MAX_STEPS_PER_INSTANT) {
+		u64 next = sim_bus_next_event(bus);
+
+		if (next > when)
+			break;
+		if (next > bus->now) {
+			bus->now = next;
+			same_instant = 0;
+		} else {
+			same_instant++;
+		}
+		sim_bus_step(bus);
+	}
+	if (when > bus->now)
+		bus->now = when;
+}
+
+void sim_bus_advance(struct sim_bus *bus, u64 ns)
+{
+	u64 when = bus->now + ns;
+
+	sim_bus_advance_to(bus, when < bus->now ? U64_MAX : when);
+}

@@ -1,0 +1,82 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Internals shared by the model's source files; not for harnesses.
+ */
+#ifndef MCP2510_SIM_PRIVATE_H
+#define MCP2510_SIM_PRIVATE_H
+
+#include "mcp2510_sim.h"
+
+#define SIM_NS_PER_SEC		1000000000U
+/* bit times of an error flag, its delimiter and the intermission */
+#define SIM_ERROR_FRAME_BITS	(6 + 8 + 3)
+/* bus-off recovery: 128 occurrences of 11 consecutive recessive bits */
+#define SIM_RECOVERY_SEQUENCES	128
+#define SIM_RECOVERY_BITS	11
+/* two bit rates within this many parts per hundred understand each other */
+#define SIM_RATE_TOLERANCE_PCT	1
+/* error counter limits, CAN 2.0B fault confinement */
+#define SIM_WARNING_LIMIT	96
+#define SIM_PASSIVE_LIMIT	128
+#define SIM_BUS_OFF_LIMIT	256
+#define SIM_REC_AFTER_PASSIVE	119
+
+/*
+ * 64-by-32-bit division without the compiler's 64-bit division helpers,
+ * which a 32-bit kernel does not link: plain shift and subtract, 64
+ * rounds at most.
+ */
+static inline u64 sim_div_u64(u64 n, u32 d)
+{
+	u64 q = 0, r = 0;
+	int i;
+
+	if (!d)
+		return U64_MAX;
+	for (i = 63; i >= 0; i--) {
+		r = (r << 1) | ((n >> i) & 1);
+		if (r >= d) {
+			r -= d;
+			q |= 1ULL << i;
+		}
+	}
+	return q;
+}
+
+static inline u64 sim_min_u64(u64 a, u64 b)
+{
+	return a < b ? a : b;
+}
+
+/* frame helpers (sim_frame.c) */
+struct sim_frame_info {
+	u32 bits;		/* error-free length incl. intermission */
+	u32 stuffed_len;	/* SOF through CRC sequence, with stuff bits */
+};
+void sim_frame_measure(const struct can_frame *cf, struct sim_frame_info *info);
+u32 sim_frame_arbitration_key(const struct can_frame *cf);
+bool sim_rates_match(u32 a_ns, u32 b_ns);
+
+/* chip side, called by the bus (sim_chip.c) */
+u32 sim_chip_bit_ns(const struct sim_chip *chip);
+bool sim_chip_listening(const struct sim_chip *chip);
+bool sim_chip_error_active(const struct sim_chip *chip);
+int sim_chip_tx_candidate(const struct sim_chip *chip);
+void sim_chip_tx_frame(const struct sim_chip *chip, unsigned int buf,
+		       struct can_frame *cf);
+void sim_chip_tx_start(struct sim_chip *chip, unsigned int buf);
+void sim_chip_tx_lost(struct sim_chip *chip);
+void sim_chip_tx_end(struct sim_chip *chip, bool ok, bool count_error);
+void sim_chip_rx_ok(struct sim_chip *chip, const struct can_frame *cf);
+void sim_chip_rx_error(struct sim_chip *chip);
+void sim_chip_bus_activity(struct sim_chip *chip);
+u64 sim_chip_next_event(const struct sim_chip *chip);
+void sim_chip_run_events(struct sim_chip *chip);
+void sim_chip_recovery_account(struct sim_chip *chip, u64 until);
+void sim_chip_recovery_frame(struct sim_chip *chip, u64 end);
+
+/* bus side, called by the chip (sim_bus.c) */
+u64 sim_now(const struct sim_chip *chip);
+bool sim_bus_busy(const struct sim_bus *bus);
+
+#endif /* MCP2510_SIM_PRIVATE_H */
