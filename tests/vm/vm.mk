@@ -1,1 +1,47 @@
-# tests/vm/vm.mk: filled in by its area
+# tests/vm/vm.mk: the QEMU rig (see docs/vm-rig.md).
+#
+#   make vm-kernels          fetch Debian's 6.1 and 6.12, build the debug kernel
+#   make vm-kernel-6.1 | vm-kernel-6.12 | vm-kernel-debug
+#   make initramfs           base initramfs for each kernel in VM_KERNELS
+#   make vmtest              every scenario on every kernel in VM_KERNELS
+#   make vmtest-one SCENARIO=tests/vm/scenarios/x.sh KERNEL=6.12
+#   make vm-info             release, image and KDIR of each kernel
+#
+# Fragments whose output the guest picks up (build/modules/<kernel>/*.ko,
+# build/userspace/bin) add their make target to VMTEST_DEPS; vmtest runs
+# them after the kernels exist, with VM_KERNELS in the environment.
+# KDIR for a kernel: $(call vm_kdir,6.12), or tests/vm/kernel-info 6.12 kdir.
+
+VM_DIR := $(TOP)/tests/vm
+VM_KERNELS ?= 6.1 6.12 debug
+VMTEST_DEPS +=
+export VM_KERNELS
+
+vm_kdir = $(shell $(VM_DIR)/kernel-info $(1) kdir)
+
+.PHONY: vm-kernels vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug initramfs \
+	vmtest vmtest-one vm-info
+
+vm-kernels: vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug
+
+vm-kernel-6.1 vm-kernel-6.12:
+	@$(VM_DIR)/fetch-kernel $(@:vm-kernel-%=%)
+
+vm-kernel-debug:
+	@$(VM_DIR)/build-debug-kernel
+
+initramfs: $(addprefix vm-kernel-,$(VM_KERNELS))
+	@for k in $(VM_KERNELS); do $(VM_DIR)/mkinitramfs $$k || exit 1; done
+
+vmtest: $(addprefix vm-kernel-,$(VM_KERNELS))
+	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS))
+	@$(VM_DIR)/vmtest -k "$(VM_KERNELS)"
+
+vmtest-one:
+	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|debug]"; exit 2; }
+	@$(MAKE) --no-print-directory vm-kernel-$(or $(KERNEL),6.1)
+	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS=$(or $(KERNEL),6.1))
+	@VM_SELFTEST=0 $(VM_DIR)/vmtest -k "$(or $(KERNEL),6.1)" $(abspath $(SCENARIO))
+
+vm-info:
+	@for k in 6.1 6.12 debug; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
