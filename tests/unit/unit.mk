@@ -24,6 +24,8 @@ UNIT_SIM_SRCS := $(SIM_SRCS) $(UNIT_DIR)/sim_helpers.c
 # ---- suites -------------------------------------------------------------
 UNIT_SUITES += test_sim_spi
 test_sim_spi_SRCS := $(UNIT_SIM_SRCS)
+UNIT_SUITES += test_sim_bus
+test_sim_bus_SRCS := $(UNIT_SIM_SRCS)
 
 # ---- rules (no need to touch these to add a suite) ------------------------
 UNIT_FLAVOURS := unit unit-asan coverage
