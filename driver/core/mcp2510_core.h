@@ -125,18 +125,51 @@ struct mcp2510_chip {
 	struct mcp2510_filters filters;
 	struct mcp2510_counters counters;
 
+	/* What mcp2510_start() programmed, for mcp2510_restart(). */
+	bool started;
+	u8 cnf[3];			/* CNF1, CNF2, CNF3 */
+	u8 inte;			/* CANINTE in force */
+	u8 opmode;			/* MCP2510_MODE_* while started */
+	u32 bit_us;			/* one bit time, rounded up; 0: unknown */
+
 	/* Ordered transmit scheduler state (see tx.c). */
 	struct {
 		u32 seq[MCP2510_TXB_COUNT];	/* queue position per slot */
-		u8 prio[MCP2510_TXB_COUNT];	/* TXP given to each slot */
+		u8 prio[MCP2510_TXB_COUNT];	/* TXP in each TXBnCTRL */
 		u8 busy;			/* bit n: slot n holds a frame */
+		u8 done;			/* sent, tx_done not yet raised */
+		u8 prio_unknown;		/* TXBnCTRL.TXP unsure after -EIO */
 		u32 next_seq;
+		u32 prio_raises;		/* TXBnCTRL.TXP raises (BIT MODIFY) */
 	} tx;
+
+	/* Interrupt loop state (see irq.c). */
+	struct {
+		u8 passes_to_full_read;	/* countdown to reading CANINTF/EFLG */
+		bool full_read_next;	/* both RX buffers were full */
+	} irq;
 };
 
 int mcp2510_init(struct mcp2510_chip *chip, const struct mcp2510_variant *v,
 		 u32 osc_hz, const struct mcp2510_ops *ops,
 		 const struct mcp2510_events *events, void *ctx);
+
+/* ---- frame and identifier encoding (pure, no SPI) ---- */
+/* Buffer registers SIDH..D7, as READ RX BUFFER and LOAD TX BUFFER see them. */
+#define MCP2510_FRAME_REGS	(MCP2510_BUF_LEN - 1)
+/*
+ * Encode @cf into SIDH..D7 (@regs holds MCP2510_FRAME_REGS bytes); returns
+ * how many of them carry the frame (5 + data bytes): the rest need not be
+ * sent.  -EINVAL for a length above 8.
+ */
+int mcp2510_frame_encode(const struct can_frame *cf, u8 *regs);
+/* Decode SIDH..D7; a DLC above 8 is clamped, RTR frames carry no data. */
+void mcp2510_frame_decode(const u8 *regs, struct can_frame *cf);
+/* SIDH, SIDL, EID8, EID0 of a filter (EXIDE for extended) or of a mask. */
+void mcp2510_filter_id_encode(const struct mcp2510_filter_id *id,
+			      bool is_mask, u8 regs[MCP2510_ID_LEN]);
+/* -EINVAL unless every identifier fits its width and RXM is known. */
+int mcp2510_filters_check(const struct mcp2510_filters *f);
 
 /* ---- register access (one SPI transfer each) ---- */
 int mcp2510_reg_read(struct mcp2510_chip *chip, u8 addr, u8 *buf,
@@ -146,6 +179,8 @@ int mcp2510_reg_write(struct mcp2510_chip *chip, u8 addr, const u8 *buf,
 int mcp2510_reg_modify(struct mcp2510_chip *chip, u8 addr, u8 mask, u8 val);
 int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status);
 int mcp2510_rts(struct mcp2510_chip *chip, u8 slots);
+/* MCP2515/MCP25625 only (-EOPNOTSUPP on an MCP2510). */
+int mcp2510_rx_status(struct mcp2510_chip *chip, u8 *status);
 
 /* ---- bring-up and modes ---- */
 /* RESET, start-up wait, check the chip answers: -ENODEV when it does not. */
@@ -183,17 +218,27 @@ int mcp2510_start(struct mcp2510_chip *chip, const struct can_bittiming *bt,
 int mcp2510_stop(struct mcp2510_chip *chip);
 /* Bus-off recovery or a manual restart: re-enter the operating mode. */
 int mcp2510_restart(struct mcp2510_chip *chip);
-/* Program masks and filters; the chip must be stopped or in config mode. */
+/*
+ * Check and keep masks and filters; mcp2510_start() programs them in
+ * configuration mode.  -EBUSY while started, -EINVAL if @f is invalid.
+ */
 int mcp2510_filters_apply(struct mcp2510_chip *chip,
 			  const struct mcp2510_filters *f);
 
 /* ---- transmit ---- */
 /* Free TX buffers; the caller stops its queue at 0. */
 unsigned int mcp2510_tx_free(const struct mcp2510_chip *chip);
-/* Load @cf into a free buffer and request it; returns the slot used. */
+/*
+ * Load @cf into a free buffer and request it; returns the slot used.
+ * -EBUSY when no buffer is free, -ENETDOWN when not started, -EIO when the
+ * transport failed (the slot stays free and the frame was not sent).
+ */
 int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
 
 /* ---- interrupt ---- */
+#define MCP2510_IRQ_MAX_PASSES	64	/* bound of the edge-triggered loop */
+/* Read CANINTF/EFLG at least every this many passes, even under RX load. */
+#define MCP2510_IRQ_FULL_READ_EVERY	8
 /*
  * Handle what the chip flags, raising events.  With a level-triggered INT
  * one pass is enough (the line fires again while anything is pending);

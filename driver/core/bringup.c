@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Bring-up and operating modes: RESET and the start-up wait, telling a
+ * live chip from a missing one, mode requests, sleep and wake-up.
+ */
+#include "mcp2510_core_priv.h"
+
+/* Oscillator start-up timer after RESET (DS21291, AN739). */
+#define OST_CYCLES		128
+#define OST_MARGIN_US		5
+/* A chip still not answering after this many doubling waits is absent. */
+#define RESET_TRIES		8
+/*
+ * A mode change waits for the bus to go idle: allow a few frames with
+ * error frames at the configured bit rate, and never less than 10 ms.
+ */
+#define MODE_TIMEOUT_MIN_US	10000
+#define MODE_TIMEOUT_BITS	600
+#define POLL_FIRST_US		10
+#define POLL_MAX_US		1000
+
+void mcp2510_delay_us(struct mcp2510_chip *chip, unsigned int us)
+{
+	if (us)
+		chip->ops->delay_us(chip->ctx, us);
+}
+
+static unsigned int ost_us(const struct mcp2510_chip *chip)
+{
+	return DIV_ROUND_UP(OST_CYCLES * 1000000U, chip->osc_hz) +
+	       OST_MARGIN_US;
+}
+
+/*
+ * After RESET CANSTAT reads exactly configuration mode with no interrupt
+ * code, and CANCTRL has REQOP configuration (power-up on the MCP2510),
+ * no abort, and CLKOUT enabled at /8.  A MISO line stuck at 0x00 or
+ * 0xff, or a chip still in start-up, fails both.
+ */
+static bool reset_values_ok(const struct mcp2510_chip *chip, const u8 regs[2])
+{
+	u8 canctrl_fixed = chip->variant->reset_canctrl &
+			   ~MCP2510_CANCTRL_REQOP_MASK;
+	u8 reqop = FIELD_GET(MCP2510_CANCTRL_REQOP_MASK, regs[1]);
+
+	return regs[0] == MCP2510_RESET_CANSTAT &&
+	       (regs[1] & ~MCP2510_CANCTRL_REQOP_MASK) == canctrl_fixed &&
+	       (reqop == MCP2510_MODE_CONFIG || reqop == MCP2510_MODE_POWERUP);
+}
+
+int mcp2510_hw_reset(struct mcp2510_chip *chip)
+{
+	const u8 reset = MCP2510_INSTR_RESET;
+	unsigned int wait = ost_us(chip), try;
+	u8 regs[2];	/* CANSTAT, CANCTRL */
+	int err;
+
+	err = mcp2510_xfer(chip, &reset, NULL, 1);
+	if (err)
+		return err;
+	for (try = 0; try < RESET_TRIES; try++) {
+		mcp2510_delay_us(chip, wait);
+		err = mcp2510_reg_read(chip, MCP2510_REG_CANSTAT, regs,
+				       sizeof(regs));
+		if (err)
+			return err;
+		if (reset_values_ok(chip, regs)) {
+			mcp2510_tx_reset(chip);
+			return 0;
+		}
+		wait *= 2;
+	}
+	return -ENODEV;
+}
+
+static unsigned int mode_timeout_us(const struct mcp2510_chip *chip)
+{
+	unsigned int us = MODE_TIMEOUT_BITS * chip->bit_us;
+
+	return us > MODE_TIMEOUT_MIN_US ? us : MODE_TIMEOUT_MIN_US;
+}
+
+/* Poll CANSTAT.OPMOD until @accept says yes, backing off up to 1 ms. */
+static int opmode_wait(struct mcp2510_chip *chip,
+		       bool (*accept)(u8 opmode, u8 mode), u8 mode)
+{
+	unsigned int budget = mode_timeout_us(chip), waited = 0;
+	unsigned int wait = POLL_FIRST_US;
+	u8 canstat;
+	int err;
+
+	for (;;) {
+		err = mcp2510_reg_read(chip, MCP2510_REG_CANSTAT, &canstat, 1);
+		if (err)
+			return err;
+		if (accept(FIELD_GET(MCP2510_CANSTAT_OPMOD_MASK, canstat), mode))
+			return 0;
+		if (waited >= budget)
+			return -ETIMEDOUT;
+		mcp2510_delay_us(chip, wait);
+		waited += wait;
+		wait = wait * 2 > POLL_MAX_US ? POLL_MAX_US : wait * 2;
+	}
+}
+
+static bool opmode_is(u8 opmode, u8 mode)
+{
+	return opmode == mode;
+}
+
+static bool opmode_is_not(u8 opmode, u8 mode)
+{
+	return opmode != mode;
+}
+
+int mcp2510_set_mode(struct mcp2510_chip *chip, u8 mode)
+{
+	int err;
+
+	if (mode > MCP2510_MODE_CONFIG)
+		return -EINVAL;
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANCTRL,
+				 MCP2510_CANCTRL_REQOP_MASK,
+				 FIELD_PREP(MCP2510_CANCTRL_REQOP_MASK, mode));
+	if (err)
+		return err;
+	return opmode_wait(chip, opmode_is, mode);
+}
+
+int mcp2510_sleep(struct mcp2510_chip *chip)
+{
+	return mcp2510_set_mode(chip, MCP2510_MODE_SLEEP);
+}
+
+/*
+ * Setting WAKIF with WAKIE enabled is the chip's own wake-up cause.  It
+ * restarts the oscillator and comes up in listen-only mode whatever was
+ * running before, so the wanted mode has to be requested again.
+ */
+int mcp2510_wake(struct mcp2510_chip *chip)
+{
+	u8 mode = chip->started ? chip->opmode : MCP2510_MODE_CONFIG;
+	int err;
+
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTE, MCP2510_INT_WAK,
+				 MCP2510_INT_WAK);
+	if (err)
+		return err;
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_WAK,
+				 MCP2510_INT_WAK);
+	if (err)
+		return err;
+	mcp2510_delay_us(chip, ost_us(chip));
+	err = opmode_wait(chip, opmode_is_not, MCP2510_MODE_SLEEP);
+	if (err)
+		return err;
+	err = mcp2510_set_mode(chip, mode);
+	if (err)
+		return err;
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_WAK, 0);
+	if (err)
+		return err;
+	return mcp2510_reg_write(chip, MCP2510_REG_CANINTE, &chip->inte, 1);
+}

@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Fault confinement as SocketCAN sees it: EFLG/TEC/REC become
+ * CAN_STATE_* changes and error frames, RXnOVR becomes an overflow report,
+ * MERRF a bus error.
+ */
+#include "mcp2510_core_priv.h"
+
+#define EFLG_PASSIVE	(MCP2510_EFLG_TXEP | MCP2510_EFLG_RXEP)
+#define EFLG_WARNING	(MCP2510_EFLG_TXWAR | MCP2510_EFLG_RXWAR | \
+			 MCP2510_EFLG_EWARN)
+
+static enum can_state eflg_state(u8 eflg)
+{
+	if (eflg & MCP2510_EFLG_TXBO)
+		return CAN_STATE_BUS_OFF;
+	if (eflg & EFLG_PASSIVE)
+		return CAN_STATE_ERROR_PASSIVE;
+	if (eflg & EFLG_WARNING)
+		return CAN_STATE_ERROR_WARNING;
+	return CAN_STATE_ERROR_ACTIVE;
+}
+
+static void error_frame_init(struct can_frame *cf, canid_t class,
+			     const struct can_berr_counter *bec)
+{
+	memset(cf, 0, sizeof(*cf));
+	cf->can_id = CAN_ERR_FLAG | CAN_ERR_CNT | class;
+	cf->len = CAN_ERR_DLC;
+	cf->data[6] = bec->txerr;
+	cf->data[7] = bec->rxerr;
+}
+
+static void error_frame_send(struct mcp2510_chip *chip,
+			     const struct can_frame *cf)
+{
+	if (chip->events->error)
+		chip->events->error(chip->ctx, cf);
+}
+
+/* data[1] of a CAN_ERR_CRTL frame: which side is how bad */
+static u8 crtl_detail(enum can_state state, u8 eflg)
+{
+	switch (state) {
+	case CAN_STATE_ERROR_PASSIVE:
+		return (eflg & MCP2510_EFLG_TXEP ? CAN_ERR_CRTL_TX_PASSIVE : 0) |
+		       (eflg & MCP2510_EFLG_RXEP ? CAN_ERR_CRTL_RX_PASSIVE : 0);
+	case CAN_STATE_ERROR_WARNING:
+		return (eflg & MCP2510_EFLG_TXWAR ? CAN_ERR_CRTL_TX_WARNING : 0) |
+		       (eflg & MCP2510_EFLG_RXWAR ? CAN_ERR_CRTL_RX_WARNING : 0);
+	default:
+		return CAN_ERR_CRTL_ACTIVE;
+	}
+}
+
+static void count_state(struct mcp2510_chip *chip, enum can_state state)
+{
+	switch (state) {
+	case CAN_STATE_ERROR_WARNING:
+		chip->counters.warnings++;
+		break;
+	case CAN_STATE_ERROR_PASSIVE:
+		chip->counters.passives++;
+		break;
+	case CAN_STATE_BUS_OFF:
+		chip->counters.bus_offs++;
+		break;
+	default:
+		break;
+	}
+}
+
+void mcp2510_error_state_update(struct mcp2510_chip *chip, u8 eflg,
+				const struct can_berr_counter *bec)
+{
+	enum can_state state = eflg_state(eflg);
+	struct can_frame cf;
+
+	chip->bec = *bec;
+	if (state == chip->state)
+		return;
+	/* only a worse state is counted, as the kernel's statistics do */
+	if (state > chip->state)
+		count_state(chip, state);
+	chip->state = state;
+	if (chip->events->state)
+		chip->events->state(chip->ctx, state, bec);
+
+	if (state == CAN_STATE_BUS_OFF) {
+		error_frame_init(&cf, CAN_ERR_BUSOFF, bec);
+	} else {
+		error_frame_init(&cf, CAN_ERR_CRTL, bec);
+		cf.data[1] = crtl_detail(state, eflg);
+	}
+	error_frame_send(chip, &cf);
+}
+
+u8 mcp2510_error_overflow(struct mcp2510_chip *chip, u8 eflg,
+			  const struct can_berr_counter *bec)
+{
+	u8 ovr = eflg & (MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR);
+	struct can_frame cf;
+	unsigned int n;
+
+	if (!ovr)
+		return 0;
+	for (n = 0; n < MCP2510_RXB_COUNT; n++)
+		if (ovr & MCP2510_EFLG_RXOVR(n))
+			chip->counters.rx_overflows++;
+	error_frame_init(&cf, CAN_ERR_CRTL, bec);
+	cf.data[1] = CAN_ERR_CRTL_RX_OVERFLOW;
+	error_frame_send(chip, &cf);
+	return ovr;
+}
+
+void mcp2510_error_bus(struct mcp2510_chip *chip,
+		       const struct can_berr_counter *bec)
+{
+	struct can_frame cf;
+
+	chip->counters.bus_errors++;
+	if (!(chip->ctrlmode & CAN_CTRLMODE_BERR_REPORTING))
+		return;
+	/* the chip does not say which kind of error it saw */
+	error_frame_init(&cf, CAN_ERR_PROT | CAN_ERR_BUSERROR, bec);
+	error_frame_send(chip, &cf);
+}
+
+int mcp2510_berr_counter(struct mcp2510_chip *chip,
+			 struct can_berr_counter *bec)
+{
+	u8 regs[2];
+	int err;
+
+	err = mcp2510_reg_read(chip, MCP2510_REG_TEC, regs, sizeof(regs));
+	if (err)
+		return err;
+	bec->txerr = regs[0];
+	bec->rxerr = regs[1];
+	return 0;
+}

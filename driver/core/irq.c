@@ -1,0 +1,231 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The interrupt loop: find out what the chip flags, turn it into events
+ * and clear exactly what was handled.
+ *
+ * A pass normally starts with READ STATUS (2 bytes): it shows RXnIF, TXnIF
+ * and TXREQ, everything a busy chip raises per frame.  It does not show
+ * ERRIF, WAKIF or MERRF, so the pass reads CANINTF and EFLG instead (4
+ * bytes, same transfer count) when READ STATUS shows nothing although INT
+ * fired, every MCP2510_IRQ_FULL_READ_EVERY passes so an RX flood cannot
+ * starve error reporting, after both RX buffers were seen full (an
+ * overflow may follow), and while the chip is not error-active (so that a
+ * recovery from bus-off is seen at the next interrupt of any kind).
+ *
+ * Flags are cleared with one BIT MODIFY naming only the flags handled, so
+ * a flag raised meanwhile survives and asserts INT again.  A buffer whose
+ * RXnIF is set is never overwritten by the chip, so reading it before the
+ * clear cannot lose a frame.
+ *
+ * RXB0 is read before RXB1: with rollover a frame only goes to RXB1 while
+ * RXB0 is full, so when both are seen full RXB0's frame is the older one.
+ * (RXB1 may hold the older frame if RXB0 was emptied between the two
+ * arrivals, inside a pass; no register tells, so that race is accepted.)
+ */
+#include "mcp2510_core_priv.h"
+
+#define STATUS_RXIF_ALL	(MCP2510_STATUS_RX0IF | MCP2510_STATUS_RX1IF)
+
+struct irq_flags {
+	u8 intf;		/* CANINTF bits to handle */
+	u8 eflg;
+	u8 txreq;		/* slots with TXREQ set ... */
+	bool have_txreq;	/* ... when READ STATUS was read */
+	bool full;		/* CANINTF and EFLG were read */
+};
+
+static void status_decode(u8 status, struct irq_flags *f)
+{
+	unsigned int n;
+
+	f->intf = 0;
+	f->txreq = 0;
+	for (n = 0; n < MCP2510_RXB_COUNT; n++)
+		if (status & (n ? MCP2510_STATUS_RX1IF : MCP2510_STATUS_RX0IF))
+			f->intf |= MCP2510_INT_RX(n);
+	for (n = 0; n < MCP2510_TXB_COUNT; n++) {
+		if (status & MCP2510_STATUS_TXIF(n))
+			f->intf |= MCP2510_INT_TX(n);
+		if (status & MCP2510_STATUS_TXREQ(n))
+			f->txreq |= BIT(n);
+	}
+	f->have_txreq = true;
+}
+
+static bool full_read_due(const struct mcp2510_chip *chip)
+{
+	return chip->irq.full_read_next || !chip->irq.passes_to_full_read ||
+	       chip->state != CAN_STATE_ERROR_ACTIVE;
+}
+
+static int flags_read_full(struct mcp2510_chip *chip, struct irq_flags *f)
+{
+	u8 regs[2];
+	int err;
+
+	err = mcp2510_reg_read(chip, MCP2510_REG_CANINTF, regs, sizeof(regs));
+	if (err)
+		return err;
+	f->intf = regs[0];
+	f->eflg = regs[1];
+	f->full = true;
+	chip->irq.full_read_next = false;
+	chip->irq.passes_to_full_read = MCP2510_IRQ_FULL_READ_EVERY;
+	return 0;
+}
+
+static int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
+{
+	u8 status;
+	int err;
+
+	memset(f, 0, sizeof(*f));
+	if (full_read_due(chip)) {
+		err = flags_read_full(chip, f);
+	} else {
+		chip->irq.passes_to_full_read--;
+		err = mcp2510_read_status(chip, &status);
+		if (err)
+			return err;
+		status_decode(status, f);
+		if (!(f->intf & chip->inte))
+			err = flags_read_full(chip, f);
+	}
+	f->intf &= chip->inte;
+	return err;
+}
+
+/* Returns the CANINTF bits the caller still has to clear. */
+static int handle_rx(struct mcp2510_chip *chip, u8 intf)
+{
+	u8 regs[MCP2510_FRAME_REGS];
+	struct can_frame cf;
+	unsigned int n;
+	int err;
+
+	if ((intf & MCP2510_INT_RX_ALL) == MCP2510_INT_RX_ALL)
+		chip->irq.full_read_next = true;
+	for (n = 0; n < MCP2510_RXB_COUNT; n++) {
+		if (!(intf & MCP2510_INT_RX(n)))
+			continue;
+		err = mcp2510_rxb_read(chip, n, regs);
+		if (err)
+			return err;
+		mcp2510_frame_decode(regs, &cf);
+		if (chip->events->rx)
+			chip->events->rx(chip->ctx, &cf);
+	}
+	/* READ RX BUFFER cleared RXnIF itself */
+	return chip->variant->has_buffer_instrs ? 0 : intf & MCP2510_INT_RX_ALL;
+}
+
+/* Returns the CANINTF bits to clear. */
+static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
+{
+	u8 pending = chip->tx.busy & ~chip->tx.done;
+	u8 txif = 0, finished, clear = 0;
+	unsigned int n;
+
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (f->intf & MCP2510_INT_TX(n))
+			txif |= BIT(n);
+	/*
+	 * With TXREQ known, a pending buffer whose TXREQ went away without
+	 * TXnIF was dropped by the chip (one-shot failure, abort).
+	 */
+	finished = f->have_txreq ? pending & ~f->txreq : pending & txif;
+	mcp2510_tx_complete(chip, finished & txif);
+	mcp2510_tx_lost(chip, finished & ~txif);
+	/*
+	 * A TXnIF of a buffer still counted as pending (set after READ
+	 * STATUS saw TXREQ) stays set, to be handled by the next pass.
+	 */
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (txif & BIT(n) & ~(pending & ~finished))
+			clear |= MCP2510_INT_TX(n);
+	return clear;
+}
+
+static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
+{
+	struct can_berr_counter bec;
+	u8 ovr = 0;
+	int err;
+
+	if (!(f->intf & (MCP2510_INT_ERR | MCP2510_INT_MERR)))
+		return 0;
+	err = mcp2510_berr_counter(chip, &bec);
+	if (err)
+		return err;
+	if (f->intf & MCP2510_INT_ERR) {
+		mcp2510_error_state_update(chip, f->eflg, &bec);
+		ovr = mcp2510_error_overflow(chip, f->eflg, &bec);
+	}
+	if (f->intf & MCP2510_INT_MERR)
+		mcp2510_error_bus(chip, &bec);
+	/* EFLG first: ERRIF must not be cleared while RXnOVR still stands */
+	if (ovr)
+		return mcp2510_reg_modify(chip, MCP2510_REG_EFLG, ovr, 0);
+	return 0;
+}
+
+static int flags_count(u8 flags)
+{
+	int n = 0;
+
+	for (; flags; flags &= flags - 1)
+		n++;
+	return n;
+}
+
+/* One pass; returns the number of flags handled, 0 when none were set. */
+static int irq_pass(struct mcp2510_chip *chip)
+{
+	struct irq_flags f;
+	int clear, err;
+
+	chip->counters.irq_loops++;
+	err = flags_read(chip, &f);
+	if (err)
+		return err;
+	if (!f.intf)
+		return 0;
+
+	clear = handle_rx(chip, f.intf);
+	if (clear < 0)
+		return clear;
+	clear |= handle_tx(chip, &f);
+	err = handle_errors(chip, &f);
+	if (err)
+		return err;
+	clear |= f.intf & (MCP2510_INT_ERR | MCP2510_INT_MERR |
+			   MCP2510_INT_WAK);
+	if (clear) {
+		err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, clear, 0);
+		if (err)
+			return err;
+	}
+	return flags_count(f.intf);
+}
+
+int mcp2510_irq_handle(struct mcp2510_chip *chip)
+{
+	unsigned int pass;
+	int handled = 0, n;
+
+	for (pass = 0; pass < MCP2510_IRQ_MAX_PASSES; pass++) {
+		n = irq_pass(chip);
+		if (n < 0)
+			return n;
+		handled += n;
+		/*
+		 * A level-triggered line fires again while anything is
+		 * pending; an edge-triggered one only after INT went high,
+		 * i.e. after a pass found nothing at all.
+		 */
+		if (!chip->irq_edge || !n)
+			return handled;
+	}
+	chip->counters.irq_storms++;
+	return -EAGAIN;
+}

@@ -1,0 +1,46 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Helpers the files of the portable core share with each other but not
+ * with their callers.
+ */
+#ifndef MCP2510_CORE_PRIV_H
+#define MCP2510_CORE_PRIV_H
+
+#include "mcp2510_core.h"
+
+/* Longest transfer: instruction, address and the whole register file. */
+#define MCP2510_XFER_MAX	(2 + MCP2510_REG_COUNT)
+
+/* spi.c */
+int mcp2510_xfer(struct mcp2510_chip *chip, const u8 *tx, u8 *rx,
+		 unsigned int len);
+/* Frame registers of RX buffer @n into @regs (MCP2510_FRAME_REGS bytes). */
+int mcp2510_rxb_read(struct mcp2510_chip *chip, unsigned int n, u8 *regs);
+
+/* bringup.c */
+void mcp2510_delay_us(struct mcp2510_chip *chip, unsigned int us);
+
+/* tx.c */
+void mcp2510_tx_reset(struct mcp2510_chip *chip);
+/* Slots whose TXnIF was seen: raise tx_done in queue order. */
+void mcp2510_tx_complete(struct mcp2510_chip *chip, u8 slots);
+/* Slots the chip dropped without sending (TXREQ gone, no TXnIF). */
+void mcp2510_tx_lost(struct mcp2510_chip *chip, u8 slots);
+/* Drop every queued frame, raising tx_aborted in queue order. */
+void mcp2510_tx_abort_all(struct mcp2510_chip *chip);
+
+/* error.c */
+/* Follow EFLG/TEC/REC into chip->state, raising state and error events. */
+void mcp2510_error_state_update(struct mcp2510_chip *chip, u8 eflg,
+				const struct can_berr_counter *bec);
+/* Report RXnOVR from @eflg; returns the EFLG bits to clear. */
+u8 mcp2510_error_overflow(struct mcp2510_chip *chip, u8 eflg,
+			  const struct can_berr_counter *bec);
+/* A MERRF: count it and report it if bus-error reporting is on. */
+void mcp2510_error_bus(struct mcp2510_chip *chip,
+		       const struct can_berr_counter *bec);
+
+/* filter.c */
+int mcp2510_filters_write(struct mcp2510_chip *chip);
+
+#endif /* MCP2510_CORE_PRIV_H */

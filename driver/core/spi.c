@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * SPI instruction framing, register access and the table of chip variants.
+ * Each function here is exactly one chip-select-low period.
+ */
+#include "mcp2510_core_priv.h"
+
+static const struct mcp2510_variant mcp2510_variants[] = {
+	[MCP2510_MODEL_MCP2510] = {
+		.name = "mcp2510",
+		.model = MCP2510_MODEL_MCP2510,
+		.spi_default_hz = 5000000,
+		.has_buffer_instrs = false,
+		.has_one_shot = false,
+		.reset_canctrl = MCP2510_RESET_CANCTRL,
+	},
+	[MCP2510_MODEL_MCP2515] = {
+		.name = "mcp2515",
+		.model = MCP2510_MODEL_MCP2515,
+		.spi_default_hz = 10000000,
+		.has_buffer_instrs = true,
+		.has_one_shot = true,
+		.reset_canctrl = MCP2515_RESET_CANCTRL,
+	},
+	[MCP2510_MODEL_MCP25625] = {
+		.name = "mcp25625",
+		.model = MCP2510_MODEL_MCP25625,
+		.spi_default_hz = 10000000,
+		.has_buffer_instrs = true,
+		.has_one_shot = true,
+		.reset_canctrl = MCP2515_RESET_CANCTRL,
+	},
+};
+
+const struct mcp2510_variant *mcp2510_variant_get(enum mcp2510_model model)
+{
+	if ((unsigned int)model >= ARRAY_SIZE(mcp2510_variants))
+		return NULL;
+	return &mcp2510_variants[model];
+}
+
+/*
+ * Whatever the transport says went wrong, the chip's view of the transfer
+ * is unknown: callers only need to know that, so every failure is -EIO.
+ */
+int mcp2510_xfer(struct mcp2510_chip *chip, const u8 *tx, u8 *rx,
+		 unsigned int len)
+{
+	return chip->ops->xfer(chip->ctx, tx, rx, len) ? -EIO : 0;
+}
+
+int mcp2510_reg_read(struct mcp2510_chip *chip, u8 addr, u8 *buf,
+		     unsigned int len)
+{
+	u8 tx[MCP2510_XFER_MAX] = { MCP2510_INSTR_READ, addr };
+	u8 rx[MCP2510_XFER_MAX];
+	int err;
+
+	if (!len || len > MCP2510_REG_COUNT)
+		return -EINVAL;
+	err = mcp2510_xfer(chip, tx, rx, 2 + len);
+	if (err)
+		return err;
+	memcpy(buf, rx + 2, len);
+	return 0;
+}
+
+int mcp2510_reg_write(struct mcp2510_chip *chip, u8 addr, const u8 *buf,
+		      unsigned int len)
+{
+	u8 tx[MCP2510_XFER_MAX] = { MCP2510_INSTR_WRITE, addr };
+
+	if (!len || len > MCP2510_REG_COUNT)
+		return -EINVAL;
+	memcpy(tx + 2, buf, len);
+	return mcp2510_xfer(chip, tx, NULL, 2 + len);
+}
+
+int mcp2510_reg_modify(struct mcp2510_chip *chip, u8 addr, u8 mask, u8 val)
+{
+	const u8 tx[4] = { MCP2510_INSTR_BIT_MODIFY, addr, mask, val };
+
+	return mcp2510_xfer(chip, tx, NULL, sizeof(tx));
+}
+
+int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status)
+{
+	const u8 tx[2] = { MCP2510_INSTR_READ_STATUS, 0 };
+	u8 rx[2];
+	int err;
+
+	err = mcp2510_xfer(chip, tx, rx, sizeof(tx));
+	if (!err)
+		*status = rx[1];
+	return err;
+}
+
+int mcp2510_rx_status(struct mcp2510_chip *chip, u8 *status)
+{
+	const u8 tx[2] = { MCP2515_INSTR_RX_STATUS, 0 };
+	u8 rx[2];
+	int err;
+
+	if (!chip->variant->has_buffer_instrs)
+		return -EOPNOTSUPP;
+	err = mcp2510_xfer(chip, tx, rx, sizeof(tx));
+	if (!err)
+		*status = rx[1];
+	return err;
+}
+
+int mcp2510_rts(struct mcp2510_chip *chip, u8 slots)
+{
+	const u8 tx = MCP2510_INSTR_RTS | (slots & MCP2510_RTS_ALL);
+
+	if (!slots || slots & ~MCP2510_RTS_ALL)
+		return -EINVAL;
+	return mcp2510_xfer(chip, &tx, NULL, 1);
+}
+
+/*
+ * The MCP2515's READ RX BUFFER saves the address byte and clears RXnIF
+ * when chip select rises, so the caller must not clear it again; on the
+ * MCP2510 a plain sequential READ does the same job.
+ */
+int mcp2510_rxb_read(struct mcp2510_chip *chip, unsigned int n, u8 *regs)
+{
+	u8 tx[2 + MCP2510_FRAME_REGS] = { 0 };
+	u8 rx[2 + MCP2510_FRAME_REGS];
+	unsigned int hdr;
+	int err;
+
+	if (chip->variant->has_buffer_instrs) {
+		tx[0] = MCP2515_INSTR_READ_RX_BUFFER | MCP2515_READ_RXB_SIDH(n);
+		hdr = 1;
+	} else {
+		tx[0] = MCP2510_INSTR_READ;
+		tx[1] = MCP2510_REG_RXBSIDH(n);
+		hdr = 2;
+	}
+	err = mcp2510_xfer(chip, tx, rx, hdr + MCP2510_FRAME_REGS);
+	if (!err)
+		memcpy(regs, rx + hdr, MCP2510_FRAME_REGS);
+	return err;
+}
+
+int mcp2510_regs_dump(struct mcp2510_chip *chip, u8 *buf)
+{
+	return mcp2510_reg_read(chip, 0, buf, MCP2510_REGDUMP_LEN);
+}
