@@ -1,0 +1,374 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * CAN 2.0B fault confinement in the simulated chips (part B chapter 8,
+ * DS21291 section 6 "Error detection", DS21801 7.6 / EFLG): a lone node
+ * going error passive, bus-off and its recovery, bit-rate mismatch,
+ * injected bus errors and missing acknowledgements.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "sim_helpers.h"
+
+#define BIT_NS_125K	8000
+#define MS		1000000ULL
+
+struct rig {
+	struct sim_bus bus;
+	struct sim_chip a, b;
+	struct simh_log log;
+};
+
+static void accept_all(struct sim_chip *chip)
+{
+	simh_write(chip, MCP2510_REG_RXBCTRL(0),
+		   FIELD_PREP(MCP2510_RXBCTRL_RXM_MASK, MCP2510_RXM_ANY));
+}
+
+static struct rig *rig_new(bool two)
+{
+	struct rig *r = test_calloc(1, sizeof(*r));
+
+	sim_bus_init(&r->bus);
+	simh_log_attach(&r->bus, &r->log);
+	simh_node_setup(&r->bus, &r->a, SIM_MCP2510, SIMH_CNF1_125K,
+			SIMH_CNF2_125K, SIMH_CNF3_125K);
+	accept_all(&r->a);
+	simh_set_mode(&r->a, MCP2510_MODE_NORMAL);
+	if (two) {
+		simh_node_setup(&r->bus, &r->b, SIM_MCP2510, SIMH_CNF1_125K,
+				SIMH_CNF2_125K, SIMH_CNF3_125K);
+		accept_all(&r->b);
+		simh_set_mode(&r->b, MCP2510_MODE_NORMAL);
+	}
+	return r;
+}
+
+static int setup_one(void **state)
+{
+	*state = rig_new(false);
+	return 0;
+}
+
+static int setup_two(void **state)
+{
+	*state = rig_new(true);
+	return 0;
+}
+
+static int teardown(void **state)
+{
+	test_free(*state);
+	return 0;
+}
+
+/* run until the next frame on the bus has ended */
+static const struct sim_bus_record *next_frame(struct rig *r)
+{
+	unsigned int seen = r->log.count, guard;
+
+	for (guard = 0; guard < 100 && r->log.count == seen; guard++) {
+		u64 t = sim_bus_next_event(&r->bus);
+
+		if (t == U64_MAX)
+			break;
+		sim_bus_advance_to(&r->bus, t);
+	}
+	assert_int_equal(r->log.count, seen + 1);
+	return simh_log_get(&r->log, seen);
+}
+
+/*
+ * Alone on the bus nobody acknowledges: TEC + 8 per attempt (rule 3),
+ * warning at 96, error passive at 128, and there it stays, because an
+ * error-passive sender's ACK error without dominant bits does not count
+ * (exception 1 to rule 3).  It never goes bus-off.
+ */
+static void test_lone_node_goes_error_passive(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x000, 0, NULL);
+	const struct sim_bus_record *rec;
+	unsigned int i;
+
+	simh_write(&r->a, MCP2510_REG_CANINTE, MCP2510_INT_ERR);
+	simh_send(&r->a, 0, &cf);
+	for (i = 1; i <= 16; i++) {
+		rec = next_frame(r);
+		assert_int_equal(rec->kind, SIM_REC_ERROR);
+		assert_int_equal(rec->cause, SIM_ERR_ACK);
+		/* 34 + 6 stuff bits, CRC delimiter, ACK slot, then 6 + 8 + 3 */
+		assert_int_equal(rec->bits, 40 + 2 + 17);
+		assert_int_equal(rec->end_ns - rec->start_ns, 59 * BIT_NS_125K);
+		assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 8 * i);
+		if (i == 11)
+			assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG), 0);
+		if (i == 12) {
+			assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG),
+					 MCP2510_EFLG_TXWAR | MCP2510_EFLG_EWARN);
+			assert_false(sim_chip_pin(&r->a, SIM_PIN_INT));
+			simh_bit_modify(&r->a, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+		}
+	}
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG),
+			 MCP2510_EFLG_TXEP | MCP2510_EFLG_TXWAR | MCP2510_EFLG_EWARN);
+	assert_true(simh_read(&r->a, MCP2510_REG_CANINTF) & MCP2510_INT_ERR);
+
+	/* a second of retries later: still 128, still trying, not bus-off */
+	sim_bus_advance(&r->bus, 1000 * MS);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 128);
+	assert_false(sim_chip_bus_off(&r->a));
+	assert_true(r->log.count > 2000);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TXBCTRL(0)),
+			 MCP2510_TXBCTRL_TXREQ | MCP2510_TXBCTRL_TXERR);
+	assert_true(simh_read(&r->a, MCP2510_REG_CANINTF) & MCP2510_INT_MERR);
+	assert_int_equal(sim_chip_counters(&r->a)->tx_errors, r->log.count);
+
+	/* someone arrives: the retry succeeds and TEC counts down (rule 7) */
+	sim_phantom_attach(&r->bus, 0);
+	while (simh_read(&r->a, MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_TXREQ)
+		next_frame(r);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 127);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG),
+			 MCP2510_EFLG_TXWAR | MCP2510_EFLG_EWARN);
+}
+
+/*
+ * TEC above 255: bus-off (TXBO).  The chip comes back by itself after
+ * 128 occurrences of 11 consecutive recessive bits, with both counters 0.
+ */
+static void test_bus_off_and_recovery(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x0f0, 1, (const u8[]){ 7 }), got;
+	const u64 recovery_ns = 128ULL * 11 * BIT_NS_125K;
+	unsigned int i;
+	u64 off_at;
+
+	sim_bus_faults(&r->bus)->bus_errors = 32;
+	simh_send(&r->a, 0, &cf);
+	for (i = 1; i <= 32; i++) {
+		const struct sim_bus_record *rec = next_frame(r);
+
+		assert_int_equal(rec->cause, SIM_ERR_INJECTED);
+		assert_int_equal(sim_chip_bus_off(&r->a), i == 32);
+	}
+	off_at = sim_bus_now(&r->bus);
+	assert_int_equal(sim_chip_tec(&r->a), 256);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 255);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG),
+			 MCP2510_EFLG_TXBO | MCP2510_EFLG_TXEP |
+			 MCP2510_EFLG_TXWAR | MCP2510_EFLG_EWARN);
+	assert_int_equal(sim_chip_counters(&r->a)->bus_off, 1);
+	/* the receiver saw 32 errors, one each (rule 1) */
+	assert_int_equal(simh_read(&r->b, MCP2510_REG_REC), 32);
+	assert_true(simh_read(&r->b, MCP2510_REG_CANINTF) & MCP2510_INT_MERR);
+	assert_false(simh_read(&r->b, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
+
+	/* the idle bus gives 128 x 11 recessive bits at A's bit rate */
+	assert_int_equal(sim_bus_next_event(&r->bus), off_at + recovery_ns);
+	sim_bus_advance_to(&r->bus, off_at + recovery_ns - 1);
+	assert_true(sim_chip_bus_off(&r->a));
+	assert_int_equal(r->log.count, 32);
+	sim_bus_advance_to(&r->bus, off_at + recovery_ns);
+	assert_false(sim_chip_bus_off(&r->a));
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 0);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG), 0);
+
+	/* TXREQ survived: the frame goes out now, once */
+	simh_run_idle(&r->bus, 10 * MS);
+	assert_int_equal(r->log.count, 33);
+	assert_int_equal(simh_log_get(&r->log, 32)->kind, SIM_REC_FRAME);
+	simh_read_rx(&r->b, 0, &got, true);
+	assert_true(simh_frame_equal(&cf, &got));
+	assert_int_equal(simh_read(&r->b, MCP2510_REG_REC), 31);
+}
+
+/*
+ * Traffic counts too: every frame, even one ending in an error frame
+ * (delimiter 8 + intermission 3), gives 11 recessive bits.  Here the
+ * phantom's flood gets no ACK while A is bus-off, so it is all errors.
+ */
+static void test_bus_off_recovery_on_busy_bus(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x001, 0, NULL);
+	struct can_frame flood = simh_frame(0x700, 8, (const u8[8]){ 0 });
+	unsigned int i;
+
+	sim_phantom_attach(&r->bus, 0);
+	sim_bus_faults(&r->bus)->bus_errors = 32;
+	simh_send(&r->a, 0, &cf);
+	for (i = 0; i < 32; i++)
+		next_frame(r);
+	assert_true(sim_chip_bus_off(&r->a));
+	assert_int_equal(sim_phantom_flood(&r->bus, &flood, 200, 0), 0);
+	for (i = 1; i <= 128; i++) {
+		const struct sim_bus_record *rec = next_frame(r);
+
+		assert_int_equal(rec->sender, SIM_NODE_PHANTOM);
+		assert_int_equal(rec->cause, SIM_ERR_ACK);
+		assert_int_equal(sim_chip_bus_off(&r->a), i < 128);
+	}
+	/* back on the bus, A's id 001 wins the next arbitration */
+	assert_int_equal(next_frame(r)->sender, 0);
+	assert_int_equal(sim_phantom_pending(&r->bus), 200);
+	/* and now acknowledges the flood */
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(sim_phantom_pending(&r->bus), 199);
+}
+
+/*
+ * A node at another bit rate cannot decode the frame and, error active,
+ * destroys it with an error flag: the sender's TEC climbs by 8 per
+ * attempt to bus-off, the receiver's REC by 1 per frame.
+ */
+static void test_bit_rate_mismatch(void **state)
+{
+	struct sim_bus bus;
+	struct sim_chip a, b;
+	struct simh_log log;
+	struct can_frame cf = simh_frame(0x123, 2, (const u8[]){ 1, 2 });
+	unsigned int guard;
+
+	(void)state;
+	sim_bus_init(&bus);
+	simh_log_attach(&bus, &log);
+	simh_node_setup(&bus, &a, SIM_MCP2510, SIMH_CNF1_125K, SIMH_CNF2_125K,
+			SIMH_CNF3_125K);
+	simh_node_setup(&bus, &b, SIM_MCP2510, SIMH_CNF1_250K, SIMH_CNF2_125K,
+			SIMH_CNF3_125K);
+	assert_int_equal(sim_chip_bitrate(&b), 250000);
+	accept_all(&b);
+	simh_set_mode(&a, MCP2510_MODE_NORMAL);
+	simh_set_mode(&b, MCP2510_MODE_NORMAL);
+
+	simh_send(&a, 0, &cf);
+	for (guard = 0; guard < 100 && !sim_chip_bus_off(&a); guard++)
+		sim_bus_advance_to(&bus, sim_bus_next_event(&bus));
+	assert_true(sim_chip_bus_off(&a));
+	assert_int_equal(log.count, 32);
+	assert_int_equal(simh_log_get(&log, 0)->cause, SIM_ERR_BITRATE);
+	assert_int_equal(simh_log_get(&log, 0)->bitrate, 125000);
+	assert_int_equal(simh_read(&b, MCP2510_REG_REC), 32);
+	assert_int_equal(sim_chip_counters(&b)->rx_errors, 32);
+	assert_int_equal(sim_chip_counters(&b)->frames_rx, 0);
+	assert_true(simh_read(&b, MCP2510_REG_CANINTF) & MCP2510_INT_MERR);
+
+	/* and the other way round: B's frames are destroyed by A's flags */
+	simh_set_mode(&a, MCP2510_MODE_CONFIG);		/* clears A's counters */
+	simh_bit_modify(&a, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
+	simh_set_mode(&a, MCP2510_MODE_NORMAL);
+	simh_send(&b, 0, &cf);
+	sim_bus_advance(&bus, 0);
+	sim_bus_advance_to(&bus, sim_bus_next_event(&bus));
+	assert_int_equal(simh_log_get(&log, 32)->bitrate, 250000);
+	assert_int_equal(simh_read(&b, MCP2510_REG_TEC), 8);
+	assert_int_equal(simh_read(&a, MCP2510_REG_REC), 1);
+}
+
+/* Bit rates within 1 % understand each other; beyond, they do not. */
+static void test_bit_rate_tolerance(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x55, 0, NULL);
+
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 125600), 0);
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(sim_chip_counters(&r->a)->frames_rx, 1);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 127000), 0);
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_BITRATE);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 1);
+	sim_phantom_detach(&r->bus);
+	simh_run_idle(&r->bus, 10 * MS);
+	/* a phantom listening at another rate flags A's frames */
+	sim_phantom_attach(&r->bus, 500000);
+	simh_send(&r->a, 0, &cf);
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_BITRATE);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 8);
+}
+
+/*
+ * Receive error counting: +1 per error (rule 1), error passive above
+ * 127, and a good frame brings a passive receiver back to 119 (rule 8:
+ * "a value between 119 and 127"), then -1 per frame.
+ */
+static void test_receive_error_counter(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x321, 0, NULL);
+	unsigned int i;
+
+	sim_bus_faults(&r->bus)->bus_errors = 130;
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 0), 0);
+	for (i = 0; i < 130; i++)
+		assert_int_equal(next_frame(r)->cause, SIM_ERR_INJECTED);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 130);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG),
+			 MCP2510_EFLG_RXEP | MCP2510_EFLG_RXWAR | MCP2510_EFLG_EWARN);
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 119);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG),
+			 MCP2510_EFLG_RXWAR | MCP2510_EFLG_EWARN);
+	simh_bit_modify(&r->a, MCP2510_REG_CANINTF, MCP2510_INT_RX0, 0);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 0), 0);
+	next_frame(r);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 118);
+	/* REC is capped at 255 */
+	sim_bus_faults(&r->bus)->bus_errors = 300;
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 0), 0);
+	for (i = 0; i < 300; i++)
+		next_frame(r);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 255);
+}
+
+/*
+ * Missing ACK with a receiver present (fault "no_ack").  While the
+ * sender is error active its error flag destroys the frame for everyone;
+ * once passive its flag is recessive, the receiver takes the frame and
+ * the sender retries (the classic duplicate).
+ */
+static void test_missing_ack(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x66, 1, (const u8[]){ 0x99 }), got;
+	unsigned int i;
+
+	sim_bus_faults(&r->bus)->no_ack = true;
+	simh_send(&r->a, 0, &cf);
+	for (i = 0; i < 16; i++)
+		assert_int_equal(next_frame(r)->cause, SIM_ERR_ACK);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 128);
+	assert_int_equal(simh_read(&r->b, MCP2510_REG_REC), 16);
+	assert_false(simh_read(&r->b, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
+	next_frame(r);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 128);
+	assert_int_equal(simh_read(&r->b, MCP2510_REG_REC), 15);
+	simh_read_rx(&r->b, 0, &got, true);
+	assert_true(simh_frame_equal(&cf, &got));
+
+	/* the retry on the bus was judged before the fault went away */
+	sim_bus_faults(&r->bus)->no_ack = false;
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_ACK);
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 127);
+	assert_true(simh_read(&r->a, MCP2510_REG_CANINTF) & MCP2510_INT_TX0);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test_setup_teardown(test_lone_node_goes_error_passive, setup_one, teardown),
+		cmocka_unit_test_setup_teardown(test_bus_off_and_recovery, setup_two, teardown),
+		cmocka_unit_test_setup_teardown(test_bus_off_recovery_on_busy_bus, setup_one, teardown),
+		cmocka_unit_test(test_bit_rate_mismatch),
+		cmocka_unit_test_setup_teardown(test_bit_rate_tolerance, setup_one, teardown),
+		cmocka_unit_test_setup_teardown(test_receive_error_counter, setup_one, teardown),
+		cmocka_unit_test_setup_teardown(test_missing_ack, setup_two, teardown),
+	};
+
+	return cmocka_run_group_tests_name("sim_errors", tests, NULL, NULL);
+}
