@@ -1,0 +1,51 @@
+# Helpers for scenario scripts, in the guest at /lib/rig.sh:  . /lib/rig.sh
+# (POSIX sh, busybox ash).  Environment from vm-run: VM_KERNEL (6.1, 6.12 or
+# debug), VM_NODES, VM_VARIANT, VM_DRIVER, VM_SIM (1 when the simulated
+# chips are loaded).
+
+# Print a failure message and exit non-zero.
+fail() {
+	echo "FAIL: $*" >&2
+	exit 1
+}
+
+# can_up IF BITRATE [more "ip link set IF type can" arguments]
+can_up() {
+	_if=$1 _br=$2
+	shift 2
+	ip link set "$_if" type can bitrate "$_br" "$@" || fail "cannot configure $_if"
+	ip link set "$_if" up || fail "cannot bring $_if up"
+}
+
+# Number of receivers registered on IF, over all of /proc/net/can's lists.
+_rx_count() {
+	cat /proc/net/can/rcvlist_* 2>/dev/null | grep -c "^ *$1 " || true
+}
+
+# dump_start IF N FILE [candump options]: candump -n N IF into FILE in the
+# background, returning once its socket is registered (no frame is missed).
+# Stops itself after 20 s without a frame.  Collect it with dump_wait.
+dump_start() {
+	_if=$1 _n=$2 _file=$3
+	shift 3
+	_before=$(_rx_count "$_if")
+	candump -n "$_n" -T 20000 "$@" "$_if" >"$_file" &
+	DUMP_PID=$!
+	_tries=0
+	while [ "$(_rx_count "$_if")" -le "${_before:-0}" ]; do
+		_tries=$((_tries + 1))
+		[ $_tries -le 100 ] || { sleep 1; break; }
+		sleep 0.05
+	done
+}
+
+# dump_wait: wait for the last dump_start's candump.
+dump_wait() {
+	wait "$DUMP_PID" || true
+}
+
+# expect_lines FILE N: FILE has exactly N lines, or the scenario fails.
+expect_lines() {
+	_got=$(wc -l <"$1")
+	[ "$_got" -eq "$2" ] || { cat "$1" >&2; fail "$1: $_got lines, expected $2"; }
+}
