@@ -1,0 +1,140 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * mcp2510-sim: the chip and bus model of tests/sim behind a virtual SPI
+ * controller, with each chip's output pins as interrupt-capable GPIO lines,
+ * so that a real SPI CAN driver probes, takes interrupts and moves frames
+ * exactly as it would on a board.  Test equipment only: nothing here is part
+ * of the driver.
+ *
+ * Locking: sim->lock (taken with bottom halves off, because the bus timer
+ * runs in softirq context) guards the model, the monitor ring and the fault
+ * counters.  sim->irq_lock is a raw spinlock because the irq_chip callbacks
+ * run under the irq descriptor's raw lock; it nests inside sim->lock when
+ * the model reports a pin change.
+ */
+#ifndef MCP2510_SIM_KMOD_H
+#define MCP2510_SIM_KMOD_H
+
+#include <linux/gpio/driver.h>
+#include <linux/hrtimer.h>
+#include <linux/irq_work.h>
+#include <linux/property.h>
+#include <linux/spinlock.h>
+
+#include "../sim/mcp2510_sim.h"
+
+#define MCP2510_SIM_NAME		"mcp2510-sim"
+#define MCP2510_SIM_LINES		(SIM_MAX_NODES * SIM_PIN_COUNT)
+/* Largest chip-select-low period; spidev's default buffer is as large. */
+#define MCP2510_SIM_SPI_BUF_LEN		4096
+#define MCP2510_SIM_MONITOR_LEN		256
+#define MCP2510_SIM_LINE_NAME_LEN	12
+
+/* What this module counts per chip on top of the model's counters. */
+struct mcp2510_sim_harness_counters {
+	u64 spi_failed;		/* messages failed by the spi_errors fault */
+	u64 spi_mode_errors;	/* messages in SPI mode 1 or 2 (the chip does 0 and 3) */
+	u64 spi_overspeed;	/* transfers faster than the chip's SCK limit */
+};
+
+struct mcp2510_sim_chip {
+	struct mcp2510_sim *sim;
+	unsigned int index;
+	struct sim_chip model;
+	struct sim_counters baseline;	/* model counters at the last reset */
+	struct mcp2510_sim_harness_counters harness;
+	u32 spi_fail_left;
+	bool powered;			/* as last set through debugfs "power" */
+	struct software_node swnode;
+	struct spi_device *spi;
+};
+
+/* One output pin as the interrupt controller sees it. */
+struct mcp2510_sim_line {
+	bool level;		/* true: the pin is high */
+	bool masked;
+	bool edge_pending;
+	unsigned int type;	/* IRQ_TYPE_* */
+	u32 edge_miss;		/* falling edges still to drop */
+	u64 delivered;		/* interrupts handed to the flow handler */
+	u64 edges_missed;	/* falling edges dropped for edge_miss */
+};
+
+struct mcp2510_sim_monitor {
+	struct sim_bus_record ring[MCP2510_SIM_MONITOR_LEN];
+	u64 written;		/* records ever written */
+	u64 cleared;		/* records before this are not shown */
+};
+
+struct mcp2510_sim {
+	spinlock_t lock;		/* see the top of this file */
+	struct sim_bus bus;
+	struct mcp2510_sim_chip chips[SIM_MAX_NODES];
+	unsigned int nchips;
+	struct mcp2510_sim_monitor monitor;
+
+	/* bus time: model ns = (ktime_get_ns() - epoch_ns) / time_scale */
+	u64 epoch_ns;
+	u32 time_scale;
+	struct hrtimer timer;
+	bool stopping;
+
+	raw_spinlock_t irq_lock;
+	struct mcp2510_sim_line lines[MCP2510_SIM_LINES];
+	struct irq_work irq_work;
+	struct gpio_chip gpio;
+	char line_names[MCP2510_SIM_LINES][MCP2510_SIM_LINE_NAME_LEN];
+	const char *line_name_ptrs[MCP2510_SIM_LINES];
+
+	struct device *root;
+	struct spi_controller *ctlr;
+	const char *chip_name;		/* the SPI modalias: "mcp2510", "mcp2515" */
+	u32 sck_max_hz;			/* the chip's SPI clock limit */
+	u32 osc_hz;
+	struct property_entry props[2];	/* the chips' software node, terminated */
+	u8 spi_tx[MCP2510_SIM_SPI_BUF_LEN];
+	u8 spi_rx[MCP2510_SIM_SPI_BUF_LEN];
+
+	struct dentry *debugfs;
+};
+
+/* kmod_clock.c */
+void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale);
+void mcp2510_sim_clock_stop(struct mcp2510_sim *sim);
+void mcp2510_sim_lock(struct mcp2510_sim *sim) __acquires(&sim->lock);
+void mcp2510_sim_unlock(struct mcp2510_sim *sim) __releases(&sim->lock);
+
+/* kmod_irq.c */
+void mcp2510_sim_irq_init(struct mcp2510_sim *sim);
+int mcp2510_sim_irq_register(struct mcp2510_sim *sim);
+void mcp2510_sim_irq_unregister(struct mcp2510_sim *sim);
+void mcp2510_sim_irq_attach(struct mcp2510_sim_chip *chip);
+int mcp2510_sim_irq_of(struct mcp2510_sim *sim, unsigned int line);
+unsigned int mcp2510_sim_line(const struct mcp2510_sim *sim, unsigned int chip,
+			      enum sim_pin pin);
+void mcp2510_sim_irq_miss_edges(struct mcp2510_sim *sim, unsigned int line,
+				u32 count);
+void mcp2510_sim_irq_reset_counts(struct mcp2510_sim *sim, unsigned int line);
+void mcp2510_sim_irq_describe(struct mcp2510_sim *sim, unsigned int line,
+			      struct mcp2510_sim_line *out);
+
+/* kmod_spi.c */
+int mcp2510_sim_spi_register(struct mcp2510_sim *sim, const char *driver,
+			     int spidev_node);
+void mcp2510_sim_spi_unregister(struct mcp2510_sim *sim);
+
+/* kmod_monitor.c */
+void mcp2510_sim_monitor_attach(struct mcp2510_sim *sim);
+extern const struct file_operations mcp2510_sim_monitor_fops;
+
+/* kmod_frame_text.c */
+int mcp2510_sim_frame_parse(const char *text, struct can_frame *cf);
+int mcp2510_sim_frame_format(char *buf, size_t size, const struct can_frame *cf);
+
+/* kmod_debugfs_bus.c, kmod_debugfs_chip.c */
+void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim);
+void mcp2510_sim_debugfs_remove(struct mcp2510_sim *sim);
+void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
+				     struct dentry *parent);
+
+#endif /* MCP2510_SIM_KMOD_H */

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Bus time follows the kernel's monotonic clock, slowed down by time_scale.
+ *
+ * The model only moves when it is told to, so every access first brings it
+ * up to the present and afterwards arms a timer for its next event: frames
+ * then take as long on the simulated bus as on a real one, and a driver's
+ * own waits (start-up, mode changes) see the chip react in time.
+ */
+#include <linux/hrtimer.h>
+#include <linux/ktime.h>
+#include <linux/math64.h>
+#include <linux/overflow.h>
+
+#include "kmod.h"
+
+static u64 model_now(const struct mcp2510_sim *sim)
+{
+	return div_u64(ktime_get_ns() - sim->epoch_ns, sim->time_scale);
+}
+
+void mcp2510_sim_lock(struct mcp2510_sim *sim) __acquires(&sim->lock)
+{
+	spin_lock_bh(&sim->lock);
+	sim_bus_advance_to(&sim->bus, model_now(sim));
+}
+
+/*
+ * Arming from here, under the lock, is what keeps the timer right: a
+ * transfer that schedules an earlier event re-arms it, and the timer's own
+ * callback re-arms through the same path rather than by returning
+ * HRTIMER_RESTART with an expiry that may already be stale.
+ */
+static void arm_for_next_event(struct mcp2510_sim *sim)
+{
+	u64 next = sim_bus_next_event(&sim->bus);
+	u64 real;
+
+	if (sim->stopping || next == U64_MAX)
+		return;
+	if (check_mul_overflow(next, (u64)sim->time_scale, &real) ||
+	    check_add_overflow(real, sim->epoch_ns, &real) || real > KTIME_MAX)
+		return;
+	hrtimer_start(&sim->timer, ns_to_ktime(real), HRTIMER_MODE_ABS_SOFT);
+}
+
+void mcp2510_sim_unlock(struct mcp2510_sim *sim) __releases(&sim->lock)
+{
+	arm_for_next_event(sim);
+	spin_unlock_bh(&sim->lock);
+}
+
+static enum hrtimer_restart bus_timer_fired(struct hrtimer *timer)
+{
+	struct mcp2510_sim *sim = container_of(timer, struct mcp2510_sim, timer);
+
+	mcp2510_sim_lock(sim);
+	mcp2510_sim_unlock(sim);
+	return HRTIMER_NORESTART;
+}
+
+void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale)
+{
+	sim->time_scale = time_scale;
+	sim->epoch_ns = ktime_get_ns();
+	hrtimer_init(&sim->timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_SOFT);
+	sim->timer.function = bus_timer_fired;
+}
+
+void mcp2510_sim_clock_stop(struct mcp2510_sim *sim)
+{
+	spin_lock_bh(&sim->lock);
+	sim->stopping = true;
+	spin_unlock_bh(&sim->lock);
+	hrtimer_cancel(&sim->timer);
+}

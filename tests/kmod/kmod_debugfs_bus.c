@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The bus half of the control surface in /sys/kernel/debug/mcp2510-sim/:
+ * the phantom node (inject, flood, phantom), bus faults (bus_errors,
+ * no_ack), bus time and the monitor.  docs/simulator.md describes every
+ * file; kmod_debugfs_chip.c adds the chipN/ directories.
+ */
+#include <linux/debugfs.h>
+#include <linux/fs.h>
+#include <linux/kernel.h>
+#include <linux/string.h>
+#include <linux/uaccess.h>
+
+#include "kmod.h"
+
+#define COMMAND_LEN	96
+/* eight data bytes, so that a flood without a frame is one of full frames */
+#define FLOOD_DEFAULT_FRAME	"123#0000000000000000"
+
+/* Copy a short text command from userspace, NUL-terminated. */
+static int read_command(const char __user *ubuf, size_t len, char *buf,
+			size_t size)
+{
+	if (len >= size)
+		return -EINVAL;
+	if (copy_from_user(buf, ubuf, len))
+		return -EFAULT;
+	buf[len] = '\0';
+	return 0;
+}
+
+/* The next blank-separated word of a command, NULL at its end. */
+static char *next_word(char **cursor)
+{
+	char *word;
+
+	do {
+		word = strsep(cursor, " \t\n");
+	} while (word && !*word);
+	return word;
+}
+
+static int parse_bitrate(char *word, u32 *bitrate)
+{
+	*bitrate = 0;
+	return word ? kstrtou32(word, 0, bitrate) : 0;
+}
+
+static ssize_t inject_write(struct file *file, const char __user *ubuf,
+			    size_t len, loff_t *ppos)
+{
+	struct mcp2510_sim *sim = file_inode(file)->i_private;
+	char command[COMMAND_LEN], *cursor = command, *frame;
+	struct can_frame cf;
+	u32 bitrate;
+	int ret;
+
+	ret = read_command(ubuf, len, command, sizeof(command));
+	if (ret)
+		return ret;
+	frame = next_word(&cursor);
+	if (!frame || mcp2510_sim_frame_parse(frame, &cf) ||
+	    parse_bitrate(next_word(&cursor), &bitrate) || next_word(&cursor))
+		return -EINVAL;
+
+	mcp2510_sim_lock(sim);
+	ret = sim_phantom_send(&sim->bus, &cf, bitrate);
+	mcp2510_sim_unlock(sim);
+	return ret ? ret : len;
+}
+
+static const struct file_operations inject_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.write = inject_write,
+};
+
+static ssize_t flood_write(struct file *file, const char __user *ubuf,
+			   size_t len, loff_t *ppos)
+{
+	struct mcp2510_sim *sim = file_inode(file)->i_private;
+	char command[COMMAND_LEN], *cursor = command, *word, *frame;
+	struct can_frame cf;
+	u32 count, bitrate;
+	int ret;
+
+	ret = read_command(ubuf, len, command, sizeof(command));
+	if (ret)
+		return ret;
+	word = next_word(&cursor);
+	if (!word || kstrtou32(word, 0, &count))
+		return -EINVAL;
+	frame = next_word(&cursor);
+	if (mcp2510_sim_frame_parse(frame ? frame : FLOOD_DEFAULT_FRAME, &cf) ||
+	    parse_bitrate(next_word(&cursor), &bitrate) || next_word(&cursor))
+		return -EINVAL;
+
+	mcp2510_sim_lock(sim);
+	ret = sim_phantom_flood(&sim->bus, &cf, count, bitrate);
+	mcp2510_sim_unlock(sim);
+	return ret ? ret : len;
+}
+
+/* How many frames the phantom still has to send: poll this to await a flood. */
+static ssize_t flood_read(struct file *file, char __user *ubuf, size_t len,
+			  loff_t *ppos)
+{
+	struct mcp2510_sim *sim = file_inode(file)->i_private;
+	char text[16];
+	u32 pending;
+	int n;
+
+	mcp2510_sim_lock(sim);
+	pending = sim_phantom_pending(&sim->bus);
+	mcp2510_sim_unlock(sim);
+	n = scnprintf(text, sizeof(text), "%u\n", pending);
+	return simple_read_from_buffer(ubuf, len, ppos, text, n);
+}
+
+static const struct file_operations flood_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.read = flood_read,
+	.write = flood_write,
+	.llseek = default_llseek,
+};
+
+/* "on [bitrate]" joins the phantom to the bus (it acknowledges), "off" leaves. */
+static ssize_t phantom_write(struct file *file, const char __user *ubuf,
+			     size_t len, loff_t *ppos)
+{
+	struct mcp2510_sim *sim = file_inode(file)->i_private;
+	char command[COMMAND_LEN], *cursor = command, *word;
+	bool on;
+	u32 bitrate;
+	int ret;
+
+	ret = read_command(ubuf, len, command, sizeof(command));
+	if (ret)
+		return ret;
+	word = next_word(&cursor);
+	if (!word || (strcmp(word, "on") && strcmp(word, "off")))
+		return -EINVAL;
+	on = !strcmp(word, "on");
+	if (parse_bitrate(next_word(&cursor), &bitrate) || next_word(&cursor))
+		return -EINVAL;
+
+	mcp2510_sim_lock(sim);
+	if (on)
+		sim_phantom_attach(&sim->bus, bitrate);
+	else
+		sim_phantom_detach(&sim->bus);
+	mcp2510_sim_unlock(sim);
+	return len;
+}
+
+static const struct file_operations phantom_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.write = phantom_write,
+};
+
+static int bus_errors_get(void *data, u64 *val)
+{
+	struct mcp2510_sim *sim = data;
+
+	mcp2510_sim_lock(sim);
+	*val = sim_bus_faults(&sim->bus)->bus_errors;
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+static int bus_errors_set(void *data, u64 val)
+{
+	struct mcp2510_sim *sim = data;
+
+	if (val > U32_MAX)
+		return -EINVAL;
+	mcp2510_sim_lock(sim);
+	sim_bus_faults(&sim->bus)->bus_errors = val;
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(bus_errors_fops, bus_errors_get, bus_errors_set,
+			 "%llu\n");
+
+static int no_ack_get(void *data, u64 *val)
+{
+	struct mcp2510_sim *sim = data;
+
+	mcp2510_sim_lock(sim);
+	*val = sim_bus_faults(&sim->bus)->no_ack;
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+static int no_ack_set(void *data, u64 val)
+{
+	struct mcp2510_sim *sim = data;
+
+	if (val > 1)
+		return -EINVAL;
+	mcp2510_sim_lock(sim);
+	sim_bus_faults(&sim->bus)->no_ack = val;
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(no_ack_fops, no_ack_get, no_ack_set, "%llu\n");
+
+static int time_ns_get(void *data, u64 *val)
+{
+	struct mcp2510_sim *sim = data;
+
+	mcp2510_sim_lock(sim);
+	*val = sim_bus_now(&sim->bus);
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(time_ns_fops, time_ns_get, NULL, "%llu\n");
+
+void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
+{
+	struct dentry *dir = debugfs_create_dir(MCP2510_SIM_NAME, NULL);
+	unsigned int n;
+
+	sim->debugfs = dir;
+	debugfs_create_file("inject", 0200, dir, sim, &inject_fops);
+	debugfs_create_file("flood", 0600, dir, sim, &flood_fops);
+	debugfs_create_file("phantom", 0200, dir, sim, &phantom_fops);
+	debugfs_create_file("monitor", 0600, dir, sim, &mcp2510_sim_monitor_fops);
+	debugfs_create_file_unsafe("bus_errors", 0600, dir, sim, &bus_errors_fops);
+	debugfs_create_file_unsafe("no_ack", 0600, dir, sim, &no_ack_fops);
+	debugfs_create_file_unsafe("time_ns", 0400, dir, sim, &time_ns_fops);
+	for (n = 0; n < sim->nchips; n++)
+		mcp2510_sim_debugfs_chip_create(&sim->chips[n], dir);
+}
+
+void mcp2510_sim_debugfs_remove(struct mcp2510_sim *sim)
+{
+	debugfs_remove_recursive(sim->debugfs);
+}

@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Bus monitor: the last MCP2510_SIM_MONITOR_LEN frames and error frames
+ * the bus carried, as one text line each (debugfs "monitor"):
+ *
+ *   <start_ns> <end_ns> <sender> <frame> <bitrate> <bits> <outcome>
+ *
+ * sender is chipN or phantom, frame is in cansend syntax, outcome is ok,
+ * error-ack, error-bitrate or error-injected.  Writing anything clears it.
+ *
+ * Records are numbered from the module's start; a reader's file position
+ * is a record number, so a record overwritten while a reader pauses is
+ * skipped instead of shifting every line that follows.
+ */
+#include <linux/debugfs.h>
+#include <linux/fs.h>
+#include <linux/seq_file.h>
+
+#include "kmod.h"
+
+#define FRAME_TEXT_LEN	40
+
+static_assert((MCP2510_SIM_MONITOR_LEN & (MCP2510_SIM_MONITOR_LEN - 1)) == 0);
+
+static void record(void *ctx, const struct sim_bus_record *rec)
+{
+	struct mcp2510_sim *sim = ctx;
+	struct mcp2510_sim_monitor *mon = &sim->monitor;
+
+	mon->ring[mon->written & (MCP2510_SIM_MONITOR_LEN - 1)] = *rec;
+	mon->written++;
+}
+
+void mcp2510_sim_monitor_attach(struct mcp2510_sim *sim)
+{
+	sim_bus_set_monitor(&sim->bus, record, sim);
+}
+
+/* Copies record *@pos, moving @pos past records already overwritten. */
+static bool fetch(struct mcp2510_sim *sim, loff_t *pos,
+		  struct sim_bus_record *rec)
+{
+	struct mcp2510_sim_monitor *mon = &sim->monitor;
+	u64 seq = *pos, oldest;
+	bool found;
+
+	mcp2510_sim_lock(sim);
+	oldest = mon->written > MCP2510_SIM_MONITOR_LEN ?
+		 mon->written - MCP2510_SIM_MONITOR_LEN : 0;
+	seq = max3(seq, oldest, mon->cleared);
+	found = seq < mon->written;
+	if (found)
+		*rec = mon->ring[seq & (MCP2510_SIM_MONITOR_LEN - 1)];
+	mcp2510_sim_unlock(sim);
+	*pos = seq;
+	return found;
+}
+
+static void *monitor_start(struct seq_file *m, loff_t *pos)
+{
+	struct sim_bus_record *rec = m->private;
+
+	return fetch(file_inode(m->file)->i_private, pos, rec) ? rec : NULL;
+}
+
+static void *monitor_next(struct seq_file *m, void *v, loff_t *pos)
+{
+	++*pos;
+	return fetch(file_inode(m->file)->i_private, pos, v) ? v : NULL;
+}
+
+static void monitor_stop(struct seq_file *m, void *v)
+{
+}
+
+static const char *outcome(const struct sim_bus_record *rec)
+{
+	if (rec->kind == SIM_REC_FRAME)
+		return "ok";
+	switch (rec->cause) {
+	case SIM_ERR_ACK:
+		return "error-ack";
+	case SIM_ERR_BITRATE:
+		return "error-bitrate";
+	case SIM_ERR_INJECTED:
+		return "error-injected";
+	default:
+		return "error";
+	}
+}
+
+static int monitor_show(struct seq_file *m, void *v)
+{
+	const struct sim_bus_record *rec = v;
+	char frame[FRAME_TEXT_LEN];
+
+	mcp2510_sim_frame_format(frame, sizeof(frame), &rec->frame);
+	seq_printf(m, "%llu %llu ", rec->start_ns, rec->end_ns);
+	if (rec->sender == SIM_NODE_PHANTOM)
+		seq_puts(m, "phantom");
+	else
+		seq_printf(m, "chip%d", rec->sender);
+	seq_printf(m, " %s %u %u %s\n", frame, rec->bitrate, rec->bits,
+		   outcome(rec));
+	return 0;
+}
+
+static const struct seq_operations monitor_seq_ops = {
+	.start = monitor_start,
+	.next = monitor_next,
+	.stop = monitor_stop,
+	.show = monitor_show,
+};
+
+static int monitor_open(struct inode *inode, struct file *file)
+{
+	/* seq_file's private area holds the record being printed */
+	return seq_open_private(file, &monitor_seq_ops,
+				sizeof(struct sim_bus_record));
+}
+
+static ssize_t monitor_clear(struct file *file, const char __user *buf,
+			     size_t len, loff_t *ppos)
+{
+	struct mcp2510_sim *sim = file_inode(file)->i_private;
+
+	mcp2510_sim_lock(sim);
+	sim->monitor.cleared = sim->monitor.written;
+	mcp2510_sim_unlock(sim);
+	return len;
+}
+
+const struct file_operations mcp2510_sim_monitor_fops = {
+	.owner = THIS_MODULE,
+	.open = monitor_open,
+	.read = seq_read,
+	.write = monitor_clear,
+	.llseek = seq_lseek,
+	.release = seq_release_private,
+};

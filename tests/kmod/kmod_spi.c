@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * A virtual SPI controller whose chip selects lead to the simulated chips,
+ * and one SPI device per chip for a CAN driver (or spidev) to bind to.
+ *
+ * The chip acts on whole chip-select-low periods (an instruction is only
+ * complete when CS rises), so the transfers of a message are gathered into
+ * one buffer and handed to the model at once, split only where a transfer
+ * asks for cs_change.  CS always rises at the end of a message.
+ */
+#include <linux/device.h>
+#include <linux/property.h>
+#include <linux/spi/spi.h>
+#include <linux/string.h>
+
+#include "kmod.h"
+
+static struct mcp2510_sim *ctlr_to_sim(struct spi_controller *ctlr)
+{
+	struct mcp2510_sim **slot = spi_controller_get_devdata(ctlr);
+
+	return *slot;
+}
+
+static size_t period_limit(struct spi_device *spi)
+{
+	return MCP2510_SIM_SPI_BUF_LEN;
+}
+
+/* True when the spi_errors fault claims this message. */
+static bool take_injected_error(struct mcp2510_sim_chip *chip)
+{
+	struct mcp2510_sim *sim = chip->sim;
+	bool fail;
+
+	mcp2510_sim_lock(sim);
+	fail = chip->spi_fail_left > 0;
+	if (fail) {
+		chip->spi_fail_left--;
+		chip->harness.spi_failed++;
+	}
+	mcp2510_sim_unlock(sim);
+	return fail;
+}
+
+/*
+ * The chip samples on the rising edge with the clock idling either low or
+ * high (modes 0 and 3); other modes or a faster clock would garble real
+ * traffic.  The model cannot garble bits realistically, so it only counts.
+ */
+static void account_clocking(struct mcp2510_sim_chip *chip,
+			     const struct spi_message *msg)
+{
+	u32 mode = msg->spi->mode & SPI_MODE_X_MASK;
+	const struct spi_transfer *xfer;
+	u64 overspeed = 0;
+
+	list_for_each_entry(xfer, &msg->transfers, transfer_list)
+		if (xfer->speed_hz > chip->sim->sck_max_hz)
+			overspeed++;
+
+	mcp2510_sim_lock(chip->sim);
+	if (mode == SPI_MODE_1 || mode == SPI_MODE_2)
+		chip->harness.spi_mode_errors++;
+	chip->harness.spi_overspeed += overspeed;
+	mcp2510_sim_unlock(chip->sim);
+}
+
+/*
+ * Run the gathered bytes of transfers @first..@last as one CS-low period and
+ * hand each transfer its share of what came back on MISO.
+ */
+static void end_period(struct mcp2510_sim_chip *chip, struct spi_message *msg,
+		       struct spi_transfer *first, struct spi_transfer *last,
+		       size_t len)
+{
+	struct mcp2510_sim *sim = chip->sim;
+	struct spi_transfer *xfer = first;
+	size_t off = 0;
+
+	mcp2510_sim_lock(sim);
+	sim_chip_spi(&chip->model, sim->spi_tx, sim->spi_rx, len);
+	mcp2510_sim_unlock(sim);
+
+	list_for_each_entry_from(xfer, &msg->transfers, transfer_list) {
+		if (xfer->rx_buf)
+			memcpy(xfer->rx_buf, sim->spi_rx + off, xfer->len);
+		off += xfer->len;
+		msg->actual_length += xfer->len;
+		spi_transfer_delay_exec(xfer);
+		if (xfer == last)
+			break;
+	}
+}
+
+static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg)
+{
+	struct mcp2510_sim *sim = chip->sim;
+	struct spi_transfer *xfer, *first = NULL;
+	size_t len = 0;
+
+	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
+		if (xfer->len > MCP2510_SIM_SPI_BUF_LEN - len)
+			return -EMSGSIZE;
+		if (!first)
+			first = xfer;
+		if (xfer->tx_buf)
+			memcpy(sim->spi_tx + len, xfer->tx_buf, xfer->len);
+		else
+			memset(sim->spi_tx + len, 0, xfer->len);
+		len += xfer->len;
+		if (xfer->cs_change &&
+		    !list_is_last(&xfer->transfer_list, &msg->transfers)) {
+			end_period(chip, msg, first, xfer, len);
+			first = NULL;
+			len = 0;
+		}
+	}
+	if (first)
+		end_period(chip, msg, first,
+			   list_last_entry(&msg->transfers, struct spi_transfer,
+					   transfer_list), len);
+	return 0;
+}
+
+static int transfer_one_message(struct spi_controller *ctlr,
+				struct spi_message *msg)
+{
+	struct mcp2510_sim *sim = ctlr_to_sim(ctlr);
+	struct mcp2510_sim_chip *chip;
+	int ret;
+
+	chip = &sim->chips[spi_get_chipselect(msg->spi, 0)];
+	account_clocking(chip, msg);
+	ret = take_injected_error(chip) ? -EIO : run_message(chip, msg);
+	msg->status = ret;
+	spi_finalize_current_message(ctlr);
+	return ret;
+}
+
+/*
+ * Bind the device to exactly one driver: the chip names are in the id
+ * tables of both this project's driver and mainline mcp251x, and spidev
+ * matches no chip name at all.  Kernels from 6.12.y on keep the override
+ * in struct device (Kbuild detects which).
+ */
+static int force_driver(struct spi_device *spi, const char *driver)
+{
+#ifdef MCP2510_SIM_OVERRIDE_IN_DEVICE
+	return device_set_driver_override(&spi->dev, driver);
+#else
+	return driver_set_override(&spi->dev, &spi->driver_override, driver,
+				   strlen(driver));
+#endif
+}
+
+static int add_chip_device(struct mcp2510_sim_chip *chip, const char *driver)
+{
+	struct mcp2510_sim *sim = chip->sim;
+	struct spi_device *spi;
+	int irq, ret;
+
+	irq = mcp2510_sim_irq_of(sim,
+				 mcp2510_sim_line(sim, chip->index, SIM_PIN_INT));
+	if (irq < 0)
+		return irq;
+
+	spi = spi_alloc_device(sim->ctlr);
+	if (!spi)
+		return -ENOMEM;
+	spi_set_chipselect(spi, 0, chip->index);
+	spi->max_speed_hz = sim->sck_max_hz;
+	spi->mode = SPI_MODE_0;
+	spi->irq = irq;
+	strscpy(spi->modalias, sim->chip_name, sizeof(spi->modalias));
+
+	ret = force_driver(spi, driver);
+	if (ret)
+		goto out_put;
+
+	/* what a device tree gives a real chip: the oscillator frequency */
+	chip->swnode.properties = sim->props;
+	ret = device_add_software_node(&spi->dev, &chip->swnode);
+	if (ret)
+		goto out_put;
+
+	ret = spi_add_device(spi);
+	if (ret)
+		goto out_remove_swnode;
+	chip->spi = spi;
+	return 0;
+
+out_remove_swnode:
+	device_remove_software_node(&spi->dev);
+out_put:
+	spi_dev_put(spi);
+	return ret;
+}
+
+static int add_chip_devices(struct mcp2510_sim *sim, const char *driver,
+			    int spidev_node)
+{
+	unsigned int n;
+	int ret;
+
+	sim->props[0] = PROPERTY_ENTRY_U32("clock-frequency", sim->osc_hz);
+	for (n = 0; n < sim->nchips; n++) {
+		ret = add_chip_device(&sim->chips[n],
+				      (int)n == spidev_node ? "spidev" : driver);
+		if (ret) {
+			dev_err(sim->root, "chip %u: no SPI device: %d\n", n, ret);
+			return ret;
+		}
+	}
+	return 0;
+}
+
+int mcp2510_sim_spi_register(struct mcp2510_sim *sim, const char *driver,
+			     int spidev_node)
+{
+	struct spi_controller *ctlr;
+	int ret;
+
+	ctlr = spi_alloc_host(sim->root, sizeof(sim));
+	if (!ctlr)
+		return -ENOMEM;
+	*(struct mcp2510_sim **)spi_controller_get_devdata(ctlr) = sim;
+	ctlr->bus_num = -1;
+	ctlr->num_chipselect = sim->nchips;
+	/* accept every mode so that a wrong one shows up in spi_mode_errors */
+	ctlr->mode_bits = SPI_CPOL | SPI_CPHA;
+	ctlr->bits_per_word_mask = SPI_BPW_MASK(8);
+	ctlr->max_transfer_size = period_limit;
+	ctlr->max_message_size = period_limit;
+	ctlr->transfer_one_message = transfer_one_message;
+
+	ret = spi_register_controller(ctlr);
+	if (ret)
+		goto out_put;
+	sim->ctlr = ctlr;
+
+	ret = add_chip_devices(sim, driver, spidev_node);
+	if (ret)
+		goto out_unregister;
+	return 0;
+
+out_unregister:
+	mcp2510_sim_spi_unregister(sim);
+	return ret;
+out_put:
+	spi_controller_put(ctlr);
+	return ret;
+}
+
+/* Unbinds the drivers, removes the devices and frees the controller. */
+void mcp2510_sim_spi_unregister(struct mcp2510_sim *sim)
+{
+	spi_unregister_controller(sim->ctlr);
+	sim->ctlr = NULL;
+}
