@@ -1,1 +1,140 @@
-# userspace/userspace.mk: filled in by its area
+# userspace/userspace.mk: libmcp2510, mcp2510ctl and mcp2510d.
+#
+#   make userspace          build/userspace/lib/libmcp2510.a and .so (with
+#                           soname), build/userspace/bin/mcp2510ctl and
+#                           mcp2510d, build/userspace/libmcp2510.pc
+#   make install-userspace  into $(DESTDIR)$(PREFIX) (default /usr/local)
+#   make userspace-check    run the tools on the simulated chip and check
+#                           the shared library exports only its public API
+#
+# MCP2510_SIM=0 builds the library without the chip model: the "sim"
+# transport is then refused.  The driver core is compiled from core.mk's
+# CORE_SRCS and CORE_USER_SRCS, the model from sim.mk's SIM_SRCS.
+
+US_DIR := userspace
+US_OUT := $(BUILD)/userspace
+US_OBJ := $(US_OUT)/obj
+US_VERSION := 0.1.0
+US_SOVERSION := 0
+MCP2510_SIM ?= 1
+PREFIX ?= /usr/local
+LIBDIR ?= $(PREFIX)/lib
+
+US_PACKAGES := pkg-config libgpiod-dev
+US_CPPFLAGS := -I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib \
+	       -I$(TOP)/$(US_DIR)/tools -I$(TOP)/uapi -I$(TOP)/driver/core \
+	       -I$(TOP)/tests/sim
+US_CFLAGS := $(CSTD) $(WARN) -O2 -g -fPIC -fvisibility=hidden \
+	     -D_FORTIFY_SOURCE=2
+US_LDLIBS := -lgpiod
+
+US_LIB_SRCS := $(addprefix $(US_DIR)/lib/,open.c config.c run.c events.c \
+		inspect.c spidev.c gpio_int.c)
+US_SIM_OBJ := $(US_OBJ)/sim-transport.o
+ifeq ($(MCP2510_SIM),1)
+US_SIM_PARTS := $(US_DIR)/lib/sim_transport.c $(SIM_SRCS)
+else
+US_SIM_PARTS := $(US_DIR)/lib/sim_absent.c
+endif
+US_TOOL_SRCS := $(addprefix $(US_DIR)/tools/,cli.c frame_text.c)
+US_CTL_SRCS := $(addprefix $(US_DIR)/tools/,mcp2510ctl.c ctl.c ctl_chip.c \
+		ctl_traffic.c ctl_sim.c)
+US_DAEMON_SRCS := $(addprefix $(US_DIR)/tools/,mcp2510d.c bridge.c)
+
+us_objs = $(patsubst %.c,$(US_OBJ)/%.o,$(1))
+US_LIB_OBJS := $(call us_objs,$(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS)) \
+	       $(US_SIM_OBJ)
+US_A := $(US_OUT)/lib/libmcp2510.a
+US_SO := $(US_OUT)/lib/libmcp2510.so.$(US_VERSION)
+US_SONAME := libmcp2510.so.$(US_SOVERSION)
+US_CTL := $(US_OUT)/bin/mcp2510ctl
+US_DAEMON := $(US_OUT)/bin/mcp2510d
+US_PC := $(US_OUT)/libmcp2510.pc
+
+.PHONY: userspace userspace-deps install-userspace userspace-check
+userspace: $(US_A) $(US_SO) $(US_CTL) $(US_DAEMON) $(US_PC)
+
+userspace-deps:
+	@$(ENSURE) $(US_PACKAGES)
+
+$(US_OBJ)/%.o: $(TOP)/%.c | userspace-deps
+	@mkdir -p $(@D)
+	$(CC) $(US_CFLAGS) $(US_CPPFLAGS) -MMD -MP -c $< -o $@
+
+# The transport and, when built, the model as one object of their own.
+$(US_SIM_OBJ): $(call us_objs,$(US_SIM_PARTS))
+	$(LD) -r -o $@ $^
+
+$(US_A): $(US_LIB_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@
+	$(AR) rcs $@ $^
+
+$(US_SO): $(US_LIB_OBJS)
+	@mkdir -p $(@D)
+	$(CC) -shared -Wl,-soname,$(US_SONAME) -Wl,--no-undefined $^ \
+		$(US_LDLIBS) -o $@
+	ln -sf $(notdir $@) $(@D)/$(US_SONAME)
+	ln -sf $(US_SONAME) $(@D)/libmcp2510.so
+
+$(US_CTL): $(call us_objs,$(US_CTL_SRCS) $(US_TOOL_SRCS)) $(US_A)
+	@mkdir -p $(@D)
+	$(CC) $^ $(US_LDLIBS) -o $@
+
+$(US_DAEMON): $(call us_objs,$(US_DAEMON_SRCS) $(US_TOOL_SRCS)) $(US_A)
+	@mkdir -p $(@D)
+	$(CC) $^ $(US_LDLIBS) -o $@
+
+# Rebuild the .pc when PREFIX or LIBDIR change.
+$(US_OUT)/prefix: FORCE
+	@mkdir -p $(@D)
+	@echo '$(PREFIX) $(LIBDIR)' | cmp -s - $@ || echo '$(PREFIX) $(LIBDIR)' > $@
+
+$(US_PC): $(TOP)/$(US_DIR)/libmcp2510.pc.in $(US_OUT)/prefix
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
+	    -e 's|@VERSION@|$(US_VERSION)|' $< > $@
+
+.PHONY: FORCE
+FORCE:
+
+-include $(shell find $(US_OBJ) -name '*.d' 2>/dev/null)
+
+install-userspace: userspace
+	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(PREFIX)/bin \
+		$(DESTDIR)$(PREFIX)/include/linux/can
+	install -m 644 $(US_A) $(DESTDIR)$(LIBDIR)/
+	install -m 755 $(US_SO) $(DESTDIR)$(LIBDIR)/
+	ln -sf $(notdir $(US_SO)) $(DESTDIR)$(LIBDIR)/$(US_SONAME)
+	ln -sf $(US_SONAME) $(DESTDIR)$(LIBDIR)/libmcp2510.so
+	install -m 644 $(US_PC) $(DESTDIR)$(LIBDIR)/pkgconfig/
+	install -m 755 $(US_CTL) $(US_DAEMON) $(DESTDIR)$(PREFIX)/bin/
+	install -m 644 $(TOP)/$(US_DIR)/include/mcp2510.h \
+		$(DESTDIR)$(PREFIX)/include/
+	install -m 644 $(TOP)/uapi/linux/can/mcp2510.h \
+		$(DESTDIR)$(PREFIX)/include/linux/can/
+
+userspace-check: userspace
+	@$(TOP)/$(US_DIR)/check-userspace $(US_OUT) $(TOP)/$(US_DIR)/include/mcp2510.h
+
+CHECK_STEPS += userspace-check
+
+# ---- the cmocka suites of tests/unit/unit.mk ----------------------------
+# Their sources need the userspace include paths, and the transport suite
+# links with the system calls and libgpiod wrapped by its mocks.
+US_TEST_SRCS := $(wildcard $(TOP)/tests/unit/test_userspace_*.c \
+			   $(TOP)/tests/unit/userspace_*.c)
+US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(US_TEST_SRCS)) \
+		$(patsubst %.c,%.o,$(US_LIB_SRCS) $(US_DIR)/lib/sim_transport.c \
+			$(US_TOOL_SRCS) $(US_CTL_SRCS) $(US_DAEMON_SRCS))
+$(addprefix $(BUILD)/%/obj/,$(US_UNIT_OBJS)): UNIT_CFLAGS += \
+	-I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib -I$(TOP)/$(US_DIR)/tools
+US_WRAPPED := open close ioctl gpiod_chip_open_lookup gpiod_chip_close \
+	gpiod_chip_get_line gpiod_chip_find_line \
+	gpiod_line_request_falling_edge_events gpiod_line_release \
+	gpiod_line_get_value gpiod_line_event_wait gpiod_line_event_read \
+	gpiod_line_event_get_fd
+US_EMPTY :=
+US_COMMA := ,
+$(BUILD)/%/test_userspace_transport: UNIT_LDLIBS += \
+	-Wl$(US_COMMA)$(subst $(US_EMPTY) $(US_EMPTY),$(US_COMMA),$(addprefix --wrap=,$(US_WRAPPED)))
+$(BUILD)/%/test_userspace_lib $(BUILD)/%/test_userspace_ctl: UNIT_LDLIBS += $(US_LDLIBS)

@@ -1,0 +1,104 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Command-line handling shared by mcp2510ctl and mcp2510d: an option
+ * scanner, number parsing, the options that say which chip to use and how
+ * (--device, --int, --clock, --variant, --bitrate, ...), and one-line
+ * error messages.
+ */
+#ifndef MCP2510_CLI_H
+#define MCP2510_CLI_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "mcp2510.h"
+
+/* Exit statuses of both tools. */
+#define EXIT_FAIL	1	/* the operation failed */
+#define EXIT_USAGE	2	/* the command line is wrong */
+
+struct cli_option {
+	const char *name;	/* without the leading "--"; NULL ends a table */
+	bool has_arg;
+	int id;
+};
+
+struct cli_args {
+	int argc;
+	char **argv;
+	int next;		/* index of the next argument to look at */
+	bool no_more_options;	/* after "--" */
+	const char *prog;
+	FILE *err;
+};
+
+enum cli_kind { CLI_END, CLI_OPTION, CLI_ARG, CLI_ERROR };
+
+/*
+ * The next option (its id and value) or positional argument, from the
+ * NULL-terminated list of NULL-terminated option tables.  "--name value",
+ * "--name=value", "-h" for "--help" and "--" are understood.  CLI_ERROR
+ * has already been reported on @a->err.
+ */
+enum cli_kind cli_next(struct cli_args *a,
+		       const struct cli_option *const *tables,
+		       int *id, const char **value);
+
+/* Report "PROG: MESSAGE" as one line on @err. */
+void cli_error(FILE *err, const char *prog, const char *fmt, ...)
+	__attribute__((format(printf, 3, 4)));
+
+/* Decimal with an optional k/M suffix ("500k", "16M"); -1 if bad. */
+int cli_u32(const char *s, uint32_t *out);
+/* A non-negative int, or -1 when @allow_forever and @s is "-1". */
+int cli_int(const char *s, bool allow_forever, int *out);
+/* "0.875", "87.5%" or "875" (tenths of a percent) to tenths; -1 if bad. */
+int cli_sample_point(const char *s, uint32_t *out);
+
+/* ---- which chip, and how ---- */
+
+enum cli_device_opt {
+	CLI_OPT_HELP = 1,
+	CLI_OPT_DEVICE,
+	CLI_OPT_INT,
+	CLI_OPT_CLOCK,
+	CLI_OPT_VARIANT,
+	CLI_OPT_BITRATE,
+	CLI_OPT_SAMPLE_POINT,
+	CLI_OPT_SPI_HZ,
+	CLI_OPT_SPI_MODE,
+	CLI_OPT_LOOPBACK,
+	CLI_OPT_LISTEN_ONLY,
+	CLI_OPT_TRIPLE,
+	CLI_OPT_ONE_SHOT,
+	CLI_OPT_BERR,
+	CLI_OPT_FIRST_OWN = 100,	/* ids of a tool's own options */
+};
+
+extern const struct cli_option cli_device_options[];
+/* The device options' lines for a --help text. */
+extern const char cli_device_help[];
+
+struct cli_device {
+	const char *device;		/* transport string */
+	struct mcp2510_options opts;
+	uint32_t bitrate;
+	uint32_t sample_point;
+	uint32_t ctrlmode;
+};
+
+void cli_device_init(struct cli_device *d);
+/* Take a device option's value; -1 after reporting a bad one. */
+int cli_device_set(struct cli_device *d, struct cli_args *a, int id,
+		   const char *value);
+/* Open the chip, or report why not. */
+struct mcp2510 *cli_device_open(const struct cli_device *d,
+				struct cli_args *a, bool no_reset);
+/* Program bit rate and control modes and join the bus, or report. */
+int cli_device_up(const struct cli_device *d, struct mcp2510 *h,
+		  struct cli_args *a);
+/* Report a failed library call: "PROG: WHAT: strerror(errno)". */
+void cli_error_errno(struct cli_args *a, const char *what);
+
+#endif /* MCP2510_CLI_H */

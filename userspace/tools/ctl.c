@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: GPL-2.0
+/* mcp2510ctl: global options, the subcommand table and --help. */
+#include <string.h>
+
+#include "ctl.h"
+#include "frame_text.h"
+
+static const struct ctl_command *const commands[] = {
+	&ctl_info, &ctl_reset, &ctl_bittiming, &ctl_regs, &ctl_filter,
+	&ctl_state, &ctl_send, &ctl_dump, &ctl_selftest, &ctl_exchange,
+	&ctl_bench,
+};
+
+#define NCOMMANDS (sizeof(commands) / sizeof(commands[0]))
+
+static void usage(struct ctl *c)
+{
+	size_t i;
+
+	fprintf(c->out,
+		"Usage: mcp2510ctl [OPTIONS] COMMAND [ARGS]\n"
+		"Drive an MCP2510/MCP2515/MCP25625 CAN controller from userspace,\n"
+		"on spidev or simulated.\n\nOptions (before or after COMMAND):\n");
+	fputs(cli_device_help, c->out);
+	fputs("  -h, --help          this text; COMMAND --help for a command's\n\n"
+	      "Commands:\n", c->out);
+	for (i = 0; i < NCOMMANDS; i++)
+		fprintf(c->out, "  %-10s  %s\n", commands[i]->name,
+			commands[i]->summary);
+	fputs("\nTry it without hardware:\n"
+	      "  mcp2510ctl --device sim exchange\n"
+	      "  mcp2510ctl --device sim selftest\n"
+	      "  mcp2510ctl bittiming 500000 --clock 16M\n"
+	      "Exit status: 0 success, 1 failure, 2 bad command line.\n",
+	      c->out);
+}
+
+static const struct ctl_command *find_command(const char *name)
+{
+	size_t i;
+
+	for (i = 0; i < NCOMMANDS; i++)
+		if (!strcmp(commands[i]->name, name))
+			return commands[i];
+	return NULL;
+}
+
+int ctl_bad(struct ctl *c, const char *what, const char *value)
+{
+	cli_error(c->args.err, c->args.prog, "invalid %s '%s'", what, value);
+	return -1;
+}
+
+void ctl_print_frame(struct ctl *c, const struct mcp2510_event *ev,
+		     const char *label)
+{
+	char line[FRAME_LOG_MAX(64)];
+
+	if (frame_format_log(&ev->frame, &ev->ts, label, line, sizeof(line)) < 0)
+		return;
+	fprintf(c->out, "%s\n", line);
+	fflush(c->out);
+}
+
+bool ctl_same_frame(const struct can_frame *a, const struct can_frame *b)
+{
+	if (a->can_id != b->can_id || a->len != b->len)
+		return false;
+	if (a->can_id & CAN_RTR_FLAG)
+		return true;
+	return !memcmp(a->data, b->data, a->len);
+}
+
+static int take_positional(struct ctl *c, const struct ctl_command *cmd,
+			   const char *value, int max_pos)
+{
+	if (c->npos >= max_pos) {
+		cli_error(c->args.err, c->args.prog,
+			  "%s: unexpected argument '%s'", cmd->name, value);
+		return -1;
+	}
+	c->pos[c->npos++] = value;
+	return 0;
+}
+
+static int take_option(struct ctl *c, const struct ctl_command *cmd,
+		       ctl_option_fn fn, void *ctx, int id, const char *value)
+{
+	if (id == CLI_OPT_HELP) {
+		fputs(cmd->help, c->out);
+		return 1;
+	}
+	if (id < CLI_OPT_FIRST_OWN)
+		return cli_device_set(&c->dev, &c->args, id, value);
+	return fn(c, ctx, id, value);
+}
+
+int ctl_parse(struct ctl *c, const struct ctl_command *cmd,
+	      const struct cli_option *own, ctl_option_fn fn, void *ctx,
+	      int min_pos, int max_pos, bool *done)
+{
+	const struct cli_option *const tables[] = { cli_device_options, own, NULL };
+	const char *value;
+	enum cli_kind kind;
+	int id, ret;
+
+	*done = false;
+	if (max_pos > CTL_MAX_ARGS)
+		max_pos = CTL_MAX_ARGS;
+	while ((kind = cli_next(&c->args, tables,
+				&id, &value)) != CLI_END) {
+		if (kind == CLI_ERROR)
+			ret = -1;
+		else if (kind == CLI_ARG)
+			ret = take_positional(c, cmd, value, max_pos);
+		else
+			ret = take_option(c, cmd, fn, ctx, id, value);
+		if (ret) {
+			*done = true;
+			return ret > 0 ? 0 : EXIT_USAGE;
+		}
+	}
+	if (cmd->needs_device && !c->dev.device) {
+		cli_error(c->args.err, c->args.prog,
+			  "%s: no --device given (spidev:/dev/spidevB.C or sim)",
+			  cmd->name);
+		*done = true;
+		return EXIT_USAGE;
+	}
+	if (c->npos < min_pos) {
+		cli_error(c->args.err, c->args.prog, "%s: missing argument (see %s --help)",
+			  cmd->name, cmd->name);
+		*done = true;
+		return EXIT_USAGE;
+	}
+	return 0;
+}
+
+/* Device options before the command; returns the command's name. */
+static int parse_global(struct ctl *c, const char **name)
+{
+	const struct cli_option *const tables[] = { cli_device_options, NULL };
+	const char *value;
+	enum cli_kind kind;
+	int id;
+
+	while ((kind = cli_next(&c->args, tables, &id, &value)) != CLI_END) {
+		if (kind == CLI_ERROR)
+			return EXIT_USAGE;
+		if (kind == CLI_ARG) {
+			*name = value;
+			return 0;
+		}
+		if (id == CLI_OPT_HELP) {
+			usage(c);
+			return -1;
+		}
+		if (cli_device_set(&c->dev, &c->args, id, value))
+			return EXIT_USAGE;
+	}
+	cli_error(c->args.err, c->args.prog, "no command given (try --help)");
+	return EXIT_USAGE;
+}
+
+int ctl_main(int argc, char **argv, FILE *out, FILE *err)
+{
+	const struct ctl_command *cmd;
+	const char *name = NULL;
+	struct ctl c;
+	int ret;
+
+	memset(&c, 0, sizeof(c));
+	c.out = out;
+	c.args.argc = argc;
+	c.args.argv = argv;
+	c.args.next = 1;
+	c.args.prog = "mcp2510ctl";
+	c.args.err = err;
+	cli_device_init(&c.dev);
+	ret = parse_global(&c, &name);
+	if (ret)
+		return ret < 0 ? 0 : ret;
+	cmd = find_command(name);
+	if (!cmd) {
+		cli_error(err, c.args.prog, "unknown command '%s' (try --help)", name);
+		return EXIT_USAGE;
+	}
+	return cmd->run(&c);
+}

@@ -1,0 +1,362 @@
+// SPDX-License-Identifier: GPL-2.0
+/* mcp2510ctl commands that put frames on the bus: send, dump, selftest. */
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ctl.h"
+#include "frame_text.h"
+
+#define DEFAULT_TIMEOUT_MS	1000
+
+enum {
+	OPT_COUNT = CLI_OPT_FIRST_OWN,
+	OPT_TIMEOUT,
+	OPT_FILTER,
+	OPT_LABEL,
+};
+
+static const struct cli_option dump_options[] = {
+	{ "count", true, OPT_COUNT },
+	{ "timeout", true, OPT_TIMEOUT },
+	{ "filter", true, OPT_FILTER },
+	{ "label", true, OPT_LABEL },
+	{ NULL, false, 0 },
+};
+
+/* send and selftest only wait */
+static const struct cli_option timeout_options[] = {
+	{ "timeout", true, OPT_TIMEOUT },
+	{ NULL, false, 0 },
+};
+
+struct traffic_opts {
+	int count;			/* frames to wait for, -1: no limit */
+	int timeout_ms;
+	const char *label;
+	struct mcp2510_hw_filters filters;
+	bool filtered;
+};
+
+static int traffic_option(struct ctl *c, void *ctx, int id, const char *value)
+{
+	struct traffic_opts *t = ctx;
+	const char *eq;
+	char name[16];
+	size_t n;
+
+	switch (id) {
+	case OPT_COUNT:
+		return cli_int(value, false, &t->count) ?
+			ctl_bad(c, "--count", value) : 0;
+	case OPT_TIMEOUT:
+		return cli_int(value, true, &t->timeout_ms) ?
+			ctl_bad(c, "--timeout", value) : 0;
+	case OPT_LABEL:
+		t->label = value;
+		return 0;
+	case OPT_FILTER:
+		eq = strchr(value, '=');
+		n = eq ? (size_t)(eq - value) : 0;
+		if (!n || n >= sizeof(name))
+			return ctl_bad(c, "--filter (NAME=VALUE)", value);
+		memcpy(name, value, n);
+		name[n] = '\0';
+		t->filtered = true;
+		return mcp2510_hw_filters_set(&t->filters, name, eq + 1) ?
+			ctl_bad(c, "--filter", value) : 0;
+	default:
+		return -1;
+	}
+}
+
+static void traffic_defaults(struct traffic_opts *t)
+{
+	memset(t, 0, sizeof(*t));
+	t->count = -1;
+	t->timeout_ms = DEFAULT_TIMEOUT_MS;
+	mcp2510_hw_filters_default(&t->filters);
+}
+
+static const char *label_of(const struct traffic_opts *t, struct mcp2510 *h)
+{
+	return t->label ? t->label : mcp2510_variant_name(h);
+}
+
+static struct mcp2510 *open_up(struct ctl *c, const struct traffic_opts *t)
+{
+	struct mcp2510 *h = cli_device_open(&c->dev, &c->args, false);
+
+	if (!h)
+		return NULL;
+	if (t && t->filtered && mcp2510_set_filters(h, &t->filters)) {
+		cli_error_errno(&c->args, "setting the filters");
+		goto out_close;
+	}
+	if (cli_device_up(&c->dev, h, &c->args))
+		goto out_close;
+	return h;
+
+out_close:
+	mcp2510_close(h);
+	return NULL;
+}
+
+static void warn_ring_overflows(struct ctl *c, struct mcp2510 *h)
+{
+	struct mcp2510_stats s;
+
+	if (!mcp2510_stats(h, &s) && s.ring_overflows)
+		cli_error(c->args.err, c->args.prog,
+			  "warning: %u events lost to a full event ring",
+			  s.ring_overflows);
+}
+
+/* ---- send ---- */
+
+static int parse_frames(struct ctl *c, struct can_frame *frames)
+{
+	const char *why;
+	int i;
+
+	for (i = 0; i < c->npos; i++) {
+		if (frame_parse(c->pos[i], &frames[i], &why)) {
+			cli_error(c->args.err, c->args.prog, "bad frame '%s': %s",
+				  c->pos[i], why);
+			return -1;
+		}
+	}
+	return 0;
+}
+
+static int send_failed(struct ctl *c, struct mcp2510 *h, const char *why)
+{
+	struct can_berr_counter bec = { 0, 0 };
+	enum can_state st = CAN_STATE_STOPPED;
+
+	mcp2510_state(h, &st, &bec);
+	cli_error(c->args.err, c->args.prog, "send: %s (state %s, tec %u, rec %u)",
+		  why, mcp2510_state_name(st), bec.txerr, bec.rxerr);
+	return EXIT_FAIL;
+}
+
+/* Queue every frame, then wait until the chip reports each one sent. */
+static int send_all(struct ctl *c, struct mcp2510 *h,
+		    const struct can_frame *frames, int n, int timeout_ms)
+{
+	struct mcp2510_event ev;
+	int i, done = 0;
+
+	for (i = 0; i < n; i++)
+		if (mcp2510_send(h, &frames[i], 0))
+			return send_failed(c, h, "no transmit buffer became free");
+	while (done < n) {
+		if (mcp2510_recv(h, &ev, timeout_ms))
+			return send_failed(c, h, "not acknowledged in time");
+		if (ev.type == MCP2510_EVENT_TX_ABORTED)
+			return send_failed(c, h, "frame aborted");
+		if (ev.type == MCP2510_EVENT_TX_DONE)
+			done++;
+	}
+	return 0;
+}
+
+static int send_run(struct ctl *c)
+{
+	struct can_frame frames[CTL_MAX_ARGS];
+	struct traffic_opts t;
+	struct mcp2510 *h;
+	bool done;
+	int ret;
+
+	traffic_defaults(&t);
+	ret = ctl_parse(c, &ctl_send, timeout_options, traffic_option, &t, 1,
+			CTL_MAX_ARGS, &done);
+	if (done)
+		return ret;
+	if (parse_frames(c, frames))
+		return EXIT_USAGE;
+	h = open_up(c, &t);
+	if (!h)
+		return EXIT_FAIL;
+	ret = send_all(c, h, frames, c->npos, t.timeout_ms);
+	mcp2510_close(h);
+	return ret;
+}
+
+const struct ctl_command ctl_send = {
+	.name = "send",
+	.summary = "send frames in cansend syntax",
+	.help =
+"Usage: mcp2510ctl --device DEV send [--timeout MS] FRAME...\n"
+"Bring the chip up at --bitrate, send each FRAME in order and wait until\n"
+"every one was acknowledged on the bus (exit 1 if not within MS, default\n"
+"1000).  FRAME in cansend syntax:\n"
+"  123#DEADBEEF   standard id (3 hex digits), up to 8 data bytes\n"
+"  12345678#11    extended id (8 hex digits)\n"
+"  123#           no data;   123#11.22.33   dots between bytes\n"
+"  123#R  123#R3  remote frame, optionally with its length\n",
+	.run = send_run,
+	.needs_device = true,
+};
+
+/* ---- dump ---- */
+
+static int dump_frames(struct ctl *c, struct mcp2510 *h,
+		       const struct traffic_opts *t)
+{
+	struct mcp2510_event ev;
+	int seen = 0;
+
+	while (t->count < 0 || seen < t->count) {
+		if (mcp2510_recv(h, &ev, t->timeout_ms)) {
+			if (errno == ETIMEDOUT || errno == EAGAIN)
+				break;
+			cli_error_errno(&c->args, "receiving");
+			return EXIT_FAIL;
+		}
+		if (ev.type != MCP2510_EVENT_RX && ev.type != MCP2510_EVENT_ERROR)
+			continue;
+		ctl_print_frame(c, &ev, label_of(t, h));
+		seen++;
+	}
+	return 0;
+}
+
+static int dump_run(struct ctl *c)
+{
+	struct traffic_opts t;
+	struct mcp2510 *h;
+	bool done;
+	int ret;
+
+	traffic_defaults(&t);
+	t.timeout_ms = -1;
+	ret = ctl_parse(c, &ctl_dump, dump_options, traffic_option, &t, 0, 0,
+			&done);
+	if (done)
+		return ret;
+	h = open_up(c, &t);
+	if (!h)
+		return EXIT_FAIL;
+	ret = dump_frames(c, h, &t);
+	warn_ring_overflows(c, h);
+	mcp2510_close(h);
+	return ret;
+}
+
+const struct ctl_command ctl_dump = {
+	.name = "dump",
+	.summary = "print received frames in candump -L format",
+	.help =
+"Usage: mcp2510ctl --device DEV dump [--count N] [--timeout MS]\n"
+"                  [--filter NAME=VALUE]... [--label NAME]\n"
+"Bring the chip up at --bitrate and print every received frame and error\n"
+"frame as candump -L does, with the chip's variant (or NAME) in place of\n"
+"the interface:  (1700000000.123456) mcp2510 123#DEADBEEF\n"
+"Stops after N frames, or when none came for MS milliseconds (default:\n"
+"wait forever).  --filter programs the acceptance filters first, with the\n"
+"names and values of the filter command.\n",
+	.run = dump_run,
+	.needs_device = true,
+};
+
+/* ---- selftest ---- */
+
+/* Frames of every kind: both id formats, all lengths, remote frames. */
+static unsigned int selftest_frames(struct can_frame *f, unsigned int max)
+{
+	static const canid_t std_ids[] = { 0x000, 0x7ff, 0x555, 0x2aa };
+	static const canid_t ext_ids[] = { 0x00000000, 0x1fffffff, 0x15555555,
+					   0x0aaaaaaa };
+	unsigned int n = 0, len, i, k;
+
+	for (len = 0; len <= CAN_MAX_DLEN && n + 2 <= max; len++) {
+		for (k = 0; k < 2; k++) {
+			memset(&f[n], 0, sizeof(f[n]));
+			f[n].can_id = k ? ext_ids[len % 4] | CAN_EFF_FLAG :
+					  std_ids[len % 4];
+			f[n].len = (__u8)len;
+			for (i = 0; i < len; i++)
+				f[n].data[i] = (__u8)(0x11 * (i + 1) ^ (k ? 0xff : 0));
+			n++;
+		}
+	}
+	for (k = 0; k < 4 && n < max; k++, n++) {
+		memset(&f[n], 0, sizeof(f[n]));
+		f[n].can_id = (k & 1 ? ext_ids[k] | CAN_EFF_FLAG : std_ids[k]) |
+			      CAN_RTR_FLAG;
+		f[n].len = (__u8)(k * 2 + 1);
+	}
+	return n;
+}
+
+static int loop_one(struct ctl *c, struct mcp2510 *h,
+		    const struct can_frame *sent, int timeout_ms)
+{
+	char want[FRAME_TEXT_MAX], got[FRAME_TEXT_MAX];
+	struct mcp2510_event ev;
+
+	frame_format(sent, want, sizeof(want));
+	if (mcp2510_send(h, sent, 0)) {
+		fprintf(c->out, "selftest: sending %s: %s\n", want, strerror(errno));
+		return -1;
+	}
+	do {
+		if (mcp2510_recv(h, &ev, timeout_ms)) {
+			fprintf(c->out, "selftest: %s did not come back\n", want);
+			return -1;
+		}
+	} while (ev.type != MCP2510_EVENT_RX);
+	if (ctl_same_frame(sent, &ev.frame))
+		return 0;
+	frame_format(&ev.frame, got, sizeof(got));
+	fprintf(c->out, "selftest: sent %s, got %s\n", want, got);
+	return -1;
+}
+
+static int selftest_loop(struct ctl *c, struct mcp2510 *h, int timeout_ms)
+{
+	struct can_frame frames[32];
+	unsigned int i, n = selftest_frames(frames, 32), good = 0;
+
+	for (i = 0; i < n; i++)
+		if (!loop_one(c, h, &frames[i], timeout_ms))
+			good++;
+	fprintf(c->out, "selftest: %u of %u frames came back identical\n%s\n",
+		good, n, good == n ? "PASS" : "FAIL");
+	return good == n ? 0 : EXIT_FAIL;
+}
+
+static int selftest_run(struct ctl *c)
+{
+	struct traffic_opts t;
+	struct mcp2510 *h;
+	bool done;
+	int ret;
+
+	traffic_defaults(&t);
+	ret = ctl_parse(c, &ctl_selftest, timeout_options, traffic_option, &t,
+			0, 0, &done);
+	if (done)
+		return ret;
+	c->dev.ctrlmode |= CAN_CTRLMODE_LOOPBACK;
+	h = open_up(c, NULL);
+	if (!h)
+		return EXIT_FAIL;
+	ret = selftest_loop(c, h, t.timeout_ms);
+	mcp2510_close(h);
+	return ret;
+}
+
+const struct ctl_command ctl_selftest = {
+	.name = "selftest",
+	.summary = "loop frames of every kind through the chip (PASS/FAIL)",
+	.help =
+"Usage: mcp2510ctl --device DEV selftest [--timeout MS]\n"
+"Bring the chip up in loopback mode (nothing reaches the bus), send\n"
+"standard and extended data frames of every length and remote frames,\n"
+"and check each comes back identical.  Prints PASS or FAIL; exit 0 or 1.\n",
+	.run = selftest_run,
+	.needs_device = true,
+};

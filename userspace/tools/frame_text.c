@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: GPL-2.0
+/* cansend syntax in, candump -L syntax out. */
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "frame_text.h"
+
+#define SFF_DIGITS	3
+#define EFF_DIGITS	8
+
+static int hex_digit(char c)
+{
+	if (c >= '0' && c <= '9')
+		return c - '0';
+	if (c >= 'a' && c <= 'f')
+		return c - 'a' + 10;
+	if (c >= 'A' && c <= 'F')
+		return c - 'A' + 10;
+	return -1;
+}
+
+static int fail(const char **why, const char *what)
+{
+	*why = what;
+	return -1;
+}
+
+static int parse_id(const char *text, size_t digits, canid_t *id,
+		    const char **why)
+{
+	canid_t v = 0;
+	size_t i;
+
+	if (digits != SFF_DIGITS && digits != EFF_DIGITS)
+		return fail(why, "identifier must be 3 (standard) or 8 (extended) hex digits");
+	for (i = 0; i < digits; i++) {
+		int d = hex_digit(text[i]);
+
+		if (d < 0)
+			return fail(why, "identifier is not hexadecimal");
+		v = (v << 4) | (canid_t)d;
+	}
+	if (digits == SFF_DIGITS) {
+		if (v > CAN_SFF_MASK)
+			return fail(why, "standard identifier above 7FF");
+		*id = v;
+		return 0;
+	}
+	if (v & CAN_ERR_FLAG)
+		return fail(why, "error frames cannot be sent");
+	if (v > CAN_EFF_MASK)
+		return fail(why, "extended identifier above 1FFFFFFF");
+	*id = v | CAN_EFF_FLAG;
+	return 0;
+}
+
+static int parse_remote(const char *p, struct can_frame *cf, const char **why)
+{
+	cf->can_id |= CAN_RTR_FLAG;
+	if (!p[0])
+		return 0;
+	if (p[0] < '0' || p[0] > '8' || p[1])
+		return fail(why, "remote frame length must be one digit 0-8");
+	cf->len = (__u8)(p[0] - '0');
+	return 0;
+}
+
+static int parse_data(const char *p, struct can_frame *cf, const char **why)
+{
+	bool after_byte = false;
+
+	while (*p) {
+		int hi, lo;
+
+		if (*p == '.') {
+			if (!after_byte)
+				return fail(why, "a dot must follow a data byte");
+			after_byte = false;
+			p++;
+			continue;
+		}
+		hi = hex_digit(p[0]);
+		lo = hi < 0 ? -1 : hex_digit(p[1]);
+		if (lo < 0)
+			return fail(why, "data must be pairs of hex digits");
+		if (cf->len == CAN_MAX_DLEN)
+			return fail(why, "more than 8 data bytes");
+		cf->data[cf->len++] = (__u8)(hi << 4 | lo);
+		after_byte = true;
+		p += 2;
+	}
+	return 0;
+}
+
+int frame_parse(const char *text, struct can_frame *cf, const char **why)
+{
+	const char *hash = strchr(text, '#');
+
+	memset(cf, 0, sizeof(*cf));
+	if (!hash)
+		return fail(why, "missing '#' between identifier and data");
+	if (parse_id(text, (size_t)(hash - text), &cf->can_id, why))
+		return -1;
+	if (hash[1] == '#')
+		return fail(why, "CAN FD frames are not supported");
+	if (hash[1] == 'R' || hash[1] == 'r')
+		return parse_remote(hash + 2, cf, why);
+	return parse_data(hash + 1, cf, why);
+}
+
+static int format_id(const struct can_frame *cf, char *buf, size_t len)
+{
+	canid_t id = cf->can_id;
+
+	if (id & CAN_ERR_FLAG)
+		return snprintf(buf, len, "%08X",
+				id & (CAN_ERR_MASK | CAN_ERR_FLAG));
+	if (id & CAN_EFF_FLAG)
+		return snprintf(buf, len, "%08X", id & CAN_EFF_MASK);
+	return snprintf(buf, len, "%03X", id & CAN_SFF_MASK);
+}
+
+int frame_format(const struct can_frame *cf, char *buf, size_t len)
+{
+	unsigned int i, dlen = cf->len > CAN_MAX_DLEN ? CAN_MAX_DLEN : cf->len;
+	char tmp[FRAME_TEXT_MAX];
+	int n = format_id(cf, tmp, sizeof(tmp));
+
+	tmp[n++] = '#';
+	if (cf->can_id & CAN_RTR_FLAG && !(cf->can_id & CAN_ERR_FLAG)) {
+		tmp[n++] = 'R';
+		if (dlen)
+			tmp[n++] = (char)('0' + dlen);
+	} else {
+		for (i = 0; i < dlen; i++)
+			n += snprintf(tmp + n, sizeof(tmp) - (size_t)n, "%02X",
+				      cf->data[i]);
+	}
+	tmp[n] = '\0';
+	return snprintf(buf, len, "%s", tmp);
+}
+
+int frame_format_log(const struct can_frame *cf, const struct timespec *ts,
+		     const char *label, char *buf, size_t len)
+{
+	char frame[FRAME_TEXT_MAX];
+	int n;
+
+	frame_format(cf, frame, sizeof(frame));
+	n = snprintf(buf, len, "(%010lld.%06ld) %s %s", (long long)ts->tv_sec,
+		     ts->tv_nsec / 1000, label, frame);
+	return n < 0 || (size_t)n >= len ? -1 : n;
+}
