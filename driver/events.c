@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * What the core reports, turned into skbs and statistics.  Every event
+ * arrives with the chip lock held, mostly from the IRQ thread, so the
+ * offload queue (filled without its own lock) sees one producer at a time
+ * and frames reach the stack in the order the chip received them.
+ */
+#include <linux/can/skb.h>
+#include <linux/netdevice.h>
+
+#include "mcp2510_priv.h"
+
+static void mcp2510_deliver(struct mcp2510_priv *priv, struct sk_buff *skb)
+{
+	struct net_device_stats *stats = &priv->ndev->stats;
+
+	/* The offload frees the skb when its queue is full. */
+	if (can_rx_offload_queue_tail(&priv->offload, skb)) {
+		stats->rx_dropped++;
+		stats->rx_fifo_errors++;
+	}
+}
+
+static void mcp2510_event_rx(void *ctx, const struct can_frame *frame)
+{
+	struct mcp2510_priv *priv = ctx;
+	struct can_frame *cf;
+	struct sk_buff *skb;
+
+	skb = alloc_can_skb(priv->ndev, &cf);
+	if (!skb) {
+		priv->ndev->stats.rx_dropped++;
+		return;
+	}
+	*cf = *frame;
+	/* rx_packets and rx_bytes are counted by the offload on delivery. */
+	mcp2510_deliver(priv, skb);
+}
+
+static void mcp2510_event_tx_done(void *ctx, unsigned int slot)
+{
+	struct mcp2510_priv *priv = ctx;
+	struct net_device_stats *stats = &priv->ndev->stats;
+
+	stats->tx_bytes += can_get_echo_skb(priv->ndev, slot, NULL);
+	stats->tx_packets++;
+	mcp2510_tx_slot_release(priv, slot);
+}
+
+static void mcp2510_event_tx_aborted(void *ctx, unsigned int slot)
+{
+	struct mcp2510_priv *priv = ctx;
+
+	/* A bus-off restart may have flushed the echo skbs already. */
+	if (priv->can.echo_skb[slot]) {
+		can_free_echo_skb(priv->ndev, slot, NULL);
+		priv->ndev->stats.tx_dropped++;
+		priv->ndev->stats.tx_aborted_errors++;
+	}
+	mcp2510_tx_slot_release(priv, slot);
+}
+
+static void mcp2510_event_state(void *ctx, enum can_state state,
+				const struct can_berr_counter *bec)
+{
+	struct mcp2510_priv *priv = ctx;
+	enum can_state tx_state, rx_state;
+
+	if (state == priv->can.state)
+		return;
+
+	/* Blame the direction whose counter is higher, as the stack expects. */
+	tx_state = bec->txerr >= bec->rxerr ? state : CAN_STATE_ERROR_ACTIVE;
+	rx_state = bec->txerr <= bec->rxerr ? state : CAN_STATE_ERROR_ACTIVE;
+	/* The core sends its own error frame; this keeps state and counters. */
+	can_change_state(priv->ndev, NULL, tx_state, rx_state);
+
+	if (state != CAN_STATE_BUS_OFF)
+		return;
+	can_bus_off(priv->ndev);
+	/*
+	 * The chip would recover by itself after 128 x 11 recessive bits, but
+	 * without restart-ms the interface must stay bus-off until the user
+	 * restarts it: stop the chip once the interrupt pass is over.
+	 */
+	if (!priv->can.restart_ms)
+		priv->halt_requested = true;
+}
+
+static void mcp2510_count_error(struct mcp2510_priv *priv,
+				const struct can_frame *cf)
+{
+	struct net_device_stats *stats = &priv->ndev->stats;
+
+	if (cf->can_id & CAN_ERR_BUSERROR) {
+		priv->can.can_stats.bus_error++;
+		if (cf->data[2] & CAN_ERR_PROT_TX)
+			stats->tx_errors++;
+		else
+			stats->rx_errors++;
+	}
+	if (cf->can_id & CAN_ERR_LOSTARB)
+		priv->can.can_stats.arbitration_lost++;
+	if (cf->can_id & CAN_ERR_ACK)
+		stats->tx_errors++;
+	if ((cf->can_id & CAN_ERR_CRTL) &&
+	    (cf->data[1] & CAN_ERR_CRTL_RX_OVERFLOW)) {
+		stats->rx_over_errors++;
+		stats->rx_errors++;
+	}
+}
+
+static void mcp2510_event_error(void *ctx, const struct can_frame *frame)
+{
+	struct mcp2510_priv *priv = ctx;
+	struct can_frame *cf;
+	struct sk_buff *skb;
+
+	/* Count even when no skb can be had: the statistics must not lie. */
+	mcp2510_count_error(priv, frame);
+
+	skb = alloc_can_err_skb(priv->ndev, &cf);
+	if (!skb)
+		return;
+	*cf = *frame;
+	mcp2510_deliver(priv, skb);
+}
+
+const struct mcp2510_events mcp2510_netdev_events = {
+	.rx = mcp2510_event_rx,
+	.tx_done = mcp2510_event_tx_done,
+	.tx_aborted = mcp2510_event_tx_aborted,
+	.state = mcp2510_event_state,
+	.error = mcp2510_event_error,
+};

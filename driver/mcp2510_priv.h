@@ -1,0 +1,128 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * Kernel glue of the MCP2510/MCP2515/MCP25625 SocketCAN driver: the state
+ * shared by the glue's files.  Everything about the chip itself lives in
+ * the portable core (driver/core); this side only adapts it to SPI, the
+ * network stack, sysfs, gpiolib and power management.
+ */
+#ifndef MCP2510_PRIV_H
+#define MCP2510_PRIV_H
+
+#include <linux/can/dev.h>
+#include <linux/can/rx-offload.h>
+#include <linux/gpio/driver.h>
+#include <linux/mutex.h>
+#include <linux/spinlock.h>
+#include <linux/workqueue.h>
+
+#include "mcp2510_core.h"
+
+#define MCP2510_DRV_NAME	"mcp2510"
+
+/* The longest transfer the core makes: instruction, address, register file. */
+#define MCP2510_SPI_BUF_LEN	(2 + MCP2510_REG_COUNT)
+
+/* gpiochip lines: the two RXnBF outputs, then the three TXnRTS inputs. */
+#define MCP2510_GPIO_BF_COUNT	2
+#define MCP2510_GPIO_RTS_COUNT	3
+#define MCP2510_GPIO_COUNT	(MCP2510_GPIO_BF_COUNT + MCP2510_GPIO_RTS_COUNT)
+
+struct regulator;
+struct clk;
+
+struct mcp2510_priv {
+	struct can_priv can;		/* first: the CAN core expects it */
+	struct can_rx_offload offload;
+	struct net_device *ndev;
+	struct spi_device *spi;
+	struct regulator *vdd;
+	struct regulator *xceiver;
+	struct clk *clk;
+
+	/*
+	 * Serialises every call into the core and every SPI transfer: the
+	 * IRQ thread, the TX work, netdev/ethtool/gpio callbacks and PM all
+	 * talk to the one chip.
+	 */
+	struct mutex lock;
+	struct mcp2510_chip chip;
+	u8 *spi_tx;			/* DMA-safe bounce buffers, under lock */
+	u8 *spi_rx;
+	unsigned long irq_flags;	/* trigger type for request_irq */
+	/* bus-off without restart-ms: the chip sleeps until a restart */
+	bool halted;
+	bool halt_requested;		/* set by the state event, under lock */
+
+	/*
+	 * TX: start_xmit queues skbs here (it may not sleep) and the work
+	 * loads them into the chip.  Queued, loading and in-flight frames
+	 * never exceeds the three hardware buffers, so the netdev queue is
+	 * stopped exactly when all of them are taken.
+	 */
+	spinlock_t tx_lock;
+	struct sk_buff *tx_fifo[MCP2510_TXB_COUNT];
+	unsigned int tx_fifo_head;
+	unsigned int tx_fifo_len;
+	bool tx_loading;		/* the work holds a popped skb */
+	u8 tx_inflight;			/* bit n: TX buffer n holds a frame */
+	struct work_struct tx_work;
+
+	/* sysfs acceptance filters, programmed into the chip on open */
+	struct mcp2510_filters filters;
+
+	/* gpiochip: RXnBF levels to restore after each chip reset */
+	struct gpio_chip gpio;
+	u8 bf_set;			/* bit n: RXnBF driven by gpiolib */
+	u8 bf_level;			/* bit n: RXnBF high */
+
+	bool powered;			/* vdd and oscillator on */
+	bool hw_running;		/* IRQ requested, chip started */
+	bool suspended_running;		/* the interface was up at suspend */
+};
+
+/* spi.c: the core's transport and the chip lock */
+extern const struct mcp2510_ops mcp2510_spi_ops;
+void mcp2510_lock(struct mcp2510_priv *priv);
+void mcp2510_unlock(struct mcp2510_priv *priv);
+
+/* events.c: the core's reports turned into skbs and statistics */
+extern const struct mcp2510_events mcp2510_netdev_events;
+
+/* netdev.c */
+extern const struct net_device_ops mcp2510_netdev_ops;
+int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode);
+int mcp2510_do_get_berr_counter(const struct net_device *ndev,
+				struct can_berr_counter *bec);
+int mcp2510_hw_up(struct mcp2510_priv *priv);
+void mcp2510_hw_down(struct mcp2510_priv *priv);
+int mcp2510_chip_reset_sleep(struct mcp2510_priv *priv);
+void mcp2510_halt_locked(struct mcp2510_priv *priv);
+
+/* tx.c */
+netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev);
+void mcp2510_tx_work(struct work_struct *work);
+void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot);
+void mcp2510_tx_flush(struct mcp2510_priv *priv);
+void mcp2510_tx_forget(struct mcp2510_priv *priv);
+
+/* irq.c */
+irqreturn_t mcp2510_irq_thread(int irq, void *data);
+unsigned long mcp2510_irq_trigger(struct mcp2510_priv *priv);
+
+/* sysfs.c */
+extern const struct attribute_group mcp2510_filter_group;
+
+/* gpio.c */
+int mcp2510_gpio_register(struct mcp2510_priv *priv);
+void mcp2510_gpio_unregister(struct mcp2510_priv *priv);
+void mcp2510_gpio_restore(struct mcp2510_priv *priv);
+
+/* ethtool.c */
+extern const struct ethtool_ops mcp2510_ethtool_ops;
+
+/* pm.c */
+extern const struct dev_pm_ops mcp2510_pm_ops;
+int mcp2510_power_on(struct mcp2510_priv *priv);
+void mcp2510_power_off(struct mcp2510_priv *priv);
+
+#endif /* MCP2510_PRIV_H */

@@ -1,0 +1,215 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Network interface: bringing the chip up and down with the interface,
+ * restarts after bus-off, and the error counters.  The chip sleeps while
+ * the interface is down.
+ */
+#include <linux/interrupt.h>
+#include <linux/netdevice.h>
+#include <linux/regulator/consumer.h>
+#include <linux/spi/spi.h>
+
+#include "mcp2510_priv.h"
+
+/* Reset the chip, check that it answers, and leave it asleep until open. */
+int mcp2510_chip_reset_sleep(struct mcp2510_priv *priv)
+{
+	int ret;
+
+	mcp2510_lock(priv);
+	ret = mcp2510_hw_reset(&priv->chip);
+	if (!ret) {
+		mcp2510_gpio_restore(priv);
+		ret = mcp2510_sleep(&priv->chip);
+	}
+	mcp2510_unlock(priv);
+	return ret;
+}
+
+/* Program everything the user configured and enter the operating mode. */
+static int mcp2510_chip_start_locked(struct mcp2510_priv *priv)
+{
+	int ret;
+
+	lockdep_assert_held(&priv->lock);
+	ret = mcp2510_filters_apply(&priv->chip, &priv->filters);
+	if (ret)
+		return ret;
+
+	/* Any state the core reports from here on is relative to active. */
+	priv->can.state = CAN_STATE_ERROR_ACTIVE;
+	ret = mcp2510_start(&priv->chip, &priv->can.bittiming,
+			    priv->can.ctrlmode);
+	if (ret)
+		return ret;
+
+	priv->halted = false;
+	priv->halt_requested = false;
+	/* The reset inside start returned the RXnBF pins to their defaults. */
+	mcp2510_gpio_restore(priv);
+	return 0;
+}
+
+static int mcp2510_xceiver_enable(struct mcp2510_priv *priv)
+{
+	return priv->xceiver ? regulator_enable(priv->xceiver) : 0;
+}
+
+static void mcp2510_xceiver_disable(struct mcp2510_priv *priv)
+{
+	if (priv->xceiver)
+		regulator_disable(priv->xceiver);
+}
+
+int mcp2510_hw_up(struct mcp2510_priv *priv)
+{
+	int ret;
+
+	ret = mcp2510_xceiver_enable(priv);
+	if (ret)
+		return ret;
+
+	can_rx_offload_enable(&priv->offload);
+	/*
+	 * The handler is in place before the chip starts: on an edge
+	 * triggered line an INT asserted during start would otherwise never
+	 * be seen again.  It waits for the chip lock until start is done.
+	 */
+	ret = request_threaded_irq(priv->spi->irq, NULL, mcp2510_irq_thread,
+				   priv->irq_flags | IRQF_ONESHOT,
+				   dev_name(&priv->spi->dev), priv);
+	if (ret)
+		goto out_disable_offload;
+
+	mcp2510_lock(priv);
+	ret = mcp2510_chip_start_locked(priv);
+	if (ret)
+		mcp2510_stop(&priv->chip);
+	else
+		priv->hw_running = true;
+	mcp2510_unlock(priv);
+	can_rx_offload_threaded_irq_finish(&priv->offload);
+	if (ret)
+		goto out_free_irq;
+	return 0;
+
+out_free_irq:
+	free_irq(priv->spi->irq, priv);
+out_disable_offload:
+	can_rx_offload_disable(&priv->offload);
+	mcp2510_xceiver_disable(priv);
+	priv->can.state = CAN_STATE_STOPPED;
+	return ret;
+}
+
+/* Does nothing when hw_up failed, e.g. on resume: the interface may be up. */
+void mcp2510_hw_down(struct mcp2510_priv *priv)
+{
+	if (!priv->hw_running)
+		return;
+
+	/* No more interrupts or loads: the chip is ours alone from here. */
+	free_irq(priv->spi->irq, priv);
+	cancel_work_sync(&priv->tx_work);
+	mcp2510_tx_flush(priv);
+
+	mcp2510_lock(priv);
+	if (!priv->halted)
+		mcp2510_stop(&priv->chip);
+	priv->halted = false;
+	priv->halt_requested = false;
+	priv->hw_running = false;
+	mcp2510_tx_forget(priv);
+	mcp2510_unlock(priv);
+
+	can_rx_offload_threaded_irq_finish(&priv->offload);
+	can_rx_offload_disable(&priv->offload);
+	mcp2510_xceiver_disable(priv);
+	priv->can.state = CAN_STATE_STOPPED;
+}
+
+/* Bus-off without restart-ms: keep the chip off the bus until restarted. */
+void mcp2510_halt_locked(struct mcp2510_priv *priv)
+{
+	lockdep_assert_held(&priv->lock);
+	priv->halt_requested = false;
+	mcp2510_stop(&priv->chip);
+	priv->halted = true;
+}
+
+int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
+{
+	struct mcp2510_priv *priv = netdev_priv(ndev);
+	int ret;
+
+	if (mode != CAN_MODE_START)
+		return -EOPNOTSUPP;
+
+	mcp2510_lock(priv);
+	/* A halted chip sleeps and needs everything programmed again. */
+	if (!priv->hw_running) {
+		ret = -ENETDOWN;
+	} else if (priv->halted) {
+		ret = mcp2510_chip_start_locked(priv);
+	} else {
+		ret = mcp2510_restart(&priv->chip);
+		if (!ret)
+			priv->can.state = CAN_STATE_ERROR_ACTIVE;
+	}
+	mcp2510_unlock(priv);
+	can_rx_offload_threaded_irq_finish(&priv->offload);
+	if (ret)
+		return ret;
+
+	netif_wake_queue(ndev);
+	return 0;
+}
+
+int mcp2510_do_get_berr_counter(const struct net_device *ndev,
+				struct can_berr_counter *bec)
+{
+	struct mcp2510_priv *priv = netdev_priv(ndev);
+	int ret;
+
+	mcp2510_lock(priv);
+	ret = mcp2510_berr_counter(&priv->chip, bec);
+	mcp2510_unlock(priv);
+	return ret;
+}
+
+static int mcp2510_open(struct net_device *ndev)
+{
+	struct mcp2510_priv *priv = netdev_priv(ndev);
+	int ret;
+
+	ret = open_candev(ndev);
+	if (ret)
+		return ret;
+
+	ret = mcp2510_hw_up(priv);
+	if (ret) {
+		netdev_err(ndev, "cannot start the chip: %pe\n", ERR_PTR(ret));
+		close_candev(ndev);
+		return ret;
+	}
+
+	netif_start_queue(ndev);
+	return 0;
+}
+
+static int mcp2510_stop_netdev(struct net_device *ndev)
+{
+	struct mcp2510_priv *priv = netdev_priv(ndev);
+
+	netif_stop_queue(ndev);
+	mcp2510_hw_down(priv);
+	close_candev(ndev);
+	return 0;
+}
+
+const struct net_device_ops mcp2510_netdev_ops = {
+	.ndo_open = mcp2510_open,
+	.ndo_stop = mcp2510_stop_netdev,
+	.ndo_start_xmit = mcp2510_start_xmit,
+	.ndo_change_mtu = can_change_mtu,
+};

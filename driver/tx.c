@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Transmit path.  start_xmit runs in atomic context but loading a frame
+ * takes SPI transfers that sleep, so skbs wait in a three-entry FIFO for
+ * the TX work.  At most three frames are accepted and not yet finished
+ * (queued plus loaded), one per hardware buffer: the queue stops exactly
+ * when all three buffers are taken and wakes as soon as one frees.
+ */
+#include <linux/can/skb.h>
+#include <linux/netdevice.h>
+
+#include "mcp2510_priv.h"
+
+static unsigned int mcp2510_tx_busy(const struct mcp2510_priv *priv)
+{
+	return priv->tx_fifo_len + priv->tx_loading +
+	       hweight8(priv->tx_inflight);
+}
+
+static void mcp2510_tx_wake(struct mcp2510_priv *priv)
+{
+	if (mcp2510_tx_busy(priv) < MCP2510_TXB_COUNT &&
+	    netif_queue_stopped(priv->ndev))
+		netif_wake_queue(priv->ndev);
+}
+
+netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev)
+{
+	struct mcp2510_priv *priv = netdev_priv(ndev);
+	unsigned int tail;
+
+	if (can_dev_dropped_skb(ndev, skb))
+		return NETDEV_TX_OK;
+
+	spin_lock(&priv->tx_lock);
+	if (mcp2510_tx_busy(priv) >= MCP2510_TXB_COUNT) {
+		/* The queue should have been stopped: ask the stack to retry. */
+		netif_stop_queue(ndev);
+		spin_unlock(&priv->tx_lock);
+		netdev_err_once(ndev, "transmit while all buffers are taken\n");
+		return NETDEV_TX_BUSY;
+	}
+	tail = (priv->tx_fifo_head + priv->tx_fifo_len) % MCP2510_TXB_COUNT;
+	priv->tx_fifo[tail] = skb;
+	priv->tx_fifo_len++;
+	if (mcp2510_tx_busy(priv) == MCP2510_TXB_COUNT)
+		netif_stop_queue(ndev);
+	spin_unlock(&priv->tx_lock);
+
+	queue_work(system_highpri_wq, &priv->tx_work);
+	return NETDEV_TX_OK;
+}
+
+/*
+ * Take the oldest queued skb and count it as being loaded in the same
+ * critical section, so that start_xmit never sees a free buffer that is
+ * in fact being filled.  mcp2510_tx_loaded() ends the loading state.
+ */
+static struct sk_buff *mcp2510_tx_fifo_pop(struct mcp2510_priv *priv)
+{
+	struct sk_buff *skb = NULL;
+
+	spin_lock_bh(&priv->tx_lock);
+	if (priv->tx_fifo_len) {
+		skb = priv->tx_fifo[priv->tx_fifo_head];
+		priv->tx_fifo[priv->tx_fifo_head] = NULL;
+		priv->tx_fifo_head = (priv->tx_fifo_head + 1) % MCP2510_TXB_COUNT;
+		priv->tx_fifo_len--;
+		priv->tx_loading = true;
+	}
+	spin_unlock_bh(&priv->tx_lock);
+	return skb;
+}
+
+/* A popped skb now sits in @slot, or in none when @slot is negative. */
+static void mcp2510_tx_loaded(struct mcp2510_priv *priv, int slot)
+{
+	spin_lock_bh(&priv->tx_lock);
+	priv->tx_loading = false;
+	if (slot >= 0)
+		priv->tx_inflight |= BIT(slot);
+	else
+		mcp2510_tx_wake(priv);
+	spin_unlock_bh(&priv->tx_lock);
+}
+
+/* Called with the chip lock held, from the work or from an event. */
+void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot)
+{
+	spin_lock_bh(&priv->tx_lock);
+	priv->tx_inflight &= ~BIT(slot);
+	mcp2510_tx_wake(priv);
+	spin_unlock_bh(&priv->tx_lock);
+}
+
+static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb)
+{
+	const struct can_frame *cf = (const struct can_frame *)skb->data;
+	int slot;
+
+	lockdep_assert_held(&priv->lock);
+	if (priv->halted || !priv->hw_running)
+		return -ENETDOWN;
+
+	slot = mcp2510_tx_submit(&priv->chip, cf);
+	if (slot < 0)
+		return slot;
+
+	mcp2510_tx_loaded(priv, slot);
+	/*
+	 * The chip lock keeps the IRQ thread out until the echo skb is in
+	 * place, so a completion can never find the slot empty.
+	 */
+	can_put_echo_skb(skb, priv->ndev, slot, 0);
+	return 0;
+}
+
+void mcp2510_tx_work(struct work_struct *work)
+{
+	struct mcp2510_priv *priv = container_of(work, struct mcp2510_priv,
+						 tx_work);
+	struct sk_buff *skb;
+	int ret;
+
+	/* One frame per lock hold: completions may free buffers meanwhile. */
+	while ((skb = mcp2510_tx_fifo_pop(priv))) {
+		mcp2510_lock(priv);
+		ret = mcp2510_tx_load(priv, skb);
+		mcp2510_unlock(priv);
+		if (!ret)
+			continue;
+		if (ret != -ENETDOWN)
+			netdev_err_once(priv->ndev, "loading a frame failed: %pe\n",
+					ERR_PTR(ret));
+		dev_kfree_skb(skb);
+		priv->ndev->stats.tx_dropped++;
+		mcp2510_tx_loaded(priv, ret);
+	}
+}
+
+/*
+ * Drop the frames still waiting for the work; the caller has stopped the
+ * queue and the work.  Frames in the chip are the core's to abort.
+ */
+void mcp2510_tx_flush(struct mcp2510_priv *priv)
+{
+	struct sk_buff *skb;
+
+	while ((skb = mcp2510_tx_fifo_pop(priv))) {
+		dev_kfree_skb(skb);
+		priv->ndev->stats.tx_dropped++;
+		mcp2510_tx_loaded(priv, -ENETDOWN);
+	}
+}
+
+/*
+ * After the chip stopped, with the chip lock held: an echo skb still held
+ * belongs to a frame the core could not abort (the SPI failed), and
+ * nothing will ever complete it.
+ */
+void mcp2510_tx_forget(struct mcp2510_priv *priv)
+{
+	unsigned int slot;
+
+	lockdep_assert_held(&priv->lock);
+	for (slot = 0; slot < MCP2510_TXB_COUNT; slot++) {
+		if (!priv->can.echo_skb[slot])
+			continue;
+		can_free_echo_skb(priv->ndev, slot, NULL);
+		priv->ndev->stats.tx_dropped++;
+	}
+	spin_lock_bh(&priv->tx_lock);
+	priv->tx_inflight = 0;
+	spin_unlock_bh(&priv->tx_lock);
+}
