@@ -176,6 +176,7 @@ struct sim_bus {
 	struct sim_bus_record cur;
 	int cur_sender;
 	u32 cur_ns;			/* the sender's bit time */
+	u32 cur_listeners;		/* nodes listening at start of frame (bit per node) */
 	struct sim_phantom phantom;
 	struct sim_bus_faults faults;
 	void (*monitor)(void *ctx, const struct sim_bus_record *rec);

@@ -291,6 +291,7 @@ static void sim_bus_judge(struct sim_bus *bus, int sender, u32 ns,
 
 	v->acked = false;
 	v->flagged = false;
+	bus->cur_listeners = 0;
 	for (i = 0; i < bus->nchips; i++) {
 		struct sim_chip *chip = bus->chips[i];
 
@@ -299,6 +300,7 @@ static void sim_bus_judge(struct sim_bus *bus, int sender, u32 ns,
 		sim_chip_bus_activity(chip);
 		if (!sim_chip_listening(chip))
 			continue;
+		bus->cur_listeners |= 1U << i;
 		if (sim_rates_match(sim_chip_bit_ns(chip), ns)) {
 			/* listen-only nodes never drive the ACK slot */
 			if (chip->opmode == MCP2510_MODE_NORMAL)
@@ -385,6 +387,10 @@ static bool sim_bus_passive_ack_error(const struct sim_bus *bus)
 	return !sim_chip_error_active(sender);
 }
 
+/*
+ * Only nodes that heard the start of frame can take it: one woken by it,
+ * or switched to a listening mode meanwhile, cannot.
+ */
 static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
 {
 	unsigned int i;
@@ -392,7 +398,7 @@ static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
 	for (i = 0; i < bus->nchips; i++) {
 		struct sim_chip *chip = bus->chips[i];
 
-		if ((int)i == bus->cur_sender || !sim_chip_listening(chip))
+		if (!(bus->cur_listeners & (1U << i)) || !sim_chip_listening(chip))
 			continue;
 		if (valid && sim_rates_match(sim_chip_bit_ns(chip), bus->cur_ns))
 			sim_chip_rx_ok(chip, &bus->cur.frame);

@@ -28,6 +28,8 @@ UNIT_SUITES += test_sim_bus
 test_sim_bus_SRCS := $(UNIT_SIM_SRCS)
 UNIT_SUITES += test_sim_errors
 test_sim_errors_SRCS := $(UNIT_SIM_SRCS)
+UNIT_SUITES += test_sim_modes
+test_sim_modes_SRCS := $(UNIT_SIM_SRCS)
 
 # ---- rules (no need to touch these to add a suite) ------------------------
 UNIT_FLAVOURS := unit unit-asan coverage
