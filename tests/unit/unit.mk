@@ -31,6 +31,16 @@ test_sim_errors_SRCS := $(UNIT_SIM_SRCS)
 UNIT_SUITES += test_sim_modes
 test_sim_modes_SRCS := $(UNIT_SIM_SRCS)
 
+# the portable driver core over the chip model (tests/unit/core_harness.h)
+UNIT_CORE_SRCS := $(CORE_SRCS) $(CORE_USER_SRCS) $(SIM_SRCS) \
+	$(UNIT_DIR)/core_harness.c
+UNIT_SUITES += test_core_bittiming
+test_core_bittiming_SRCS := $(UNIT_CORE_SRCS)
+UNIT_SUITES += test_core_frame
+test_core_frame_SRCS := $(UNIT_CORE_SRCS)
+UNIT_SUITES += test_core_filter
+test_core_filter_SRCS := $(UNIT_CORE_SRCS)
+
 # ---- rules (no need to touch these to add a suite) ------------------------
 UNIT_FLAVOURS := unit unit-asan coverage
 UNIT_FLAGS_unit :=

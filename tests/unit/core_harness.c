@@ -1,0 +1,231 @@
+// SPDX-License-Identifier: GPL-2.0
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "core_harness.h"
+
+static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
+{
+	struct ch_node *node = ctx;
+
+	node->xfer_count++;
+	if (node->fail_at && node->xfer_count == node->fail_at) {
+		if (node->fail_reaches_chip)
+			sim_chip_spi(&node->sim, tx, rx, len);
+		return -EREMOTEIO;
+	}
+	sim_chip_spi(&node->sim, tx, rx, len);
+	return 0;
+}
+
+static void ch_delay_us(void *ctx, unsigned int us)
+{
+	struct ch_node *node = ctx;
+
+	sim_bus_advance(&node->rig->bus, (u64)us * 1000);
+}
+
+static const struct mcp2510_ops ch_ops = {
+	.xfer = ch_xfer,
+	.delay_us = ch_delay_us,
+};
+
+static void ch_ev_rx(void *ctx, const struct can_frame *cf)
+{
+	struct ch_node *node = ctx;
+
+	node->ev.rx[node->ev.rx_count++ % CH_LOG_MAX] = *cf;
+	if (node->ev.on_rx)
+		node->ev.on_rx(node, cf);
+}
+
+static void ch_ev_tx_done(void *ctx, unsigned int slot)
+{
+	struct ch_node *node = ctx;
+
+	node->ev.tx_done[node->ev.tx_done_count++ % CH_LOG_MAX] = slot;
+	if (node->ev.on_tx_done)
+		node->ev.on_tx_done(node, slot);
+}
+
+static void ch_ev_tx_aborted(void *ctx, unsigned int slot)
+{
+	struct ch_node *node = ctx;
+
+	node->ev.tx_aborted[node->ev.tx_aborted_count++ % CH_LOG_MAX] = slot;
+}
+
+static void ch_ev_state(void *ctx, enum can_state state,
+			const struct can_berr_counter *bec)
+{
+	struct ch_node *node = ctx;
+
+	(void)bec;
+	node->ev.state[node->ev.state_count++ % CH_LOG_MAX] = state;
+}
+
+static void ch_ev_error(void *ctx, const struct can_frame *cf)
+{
+	struct ch_node *node = ctx;
+
+	node->ev.error[node->ev.error_count++ % CH_LOG_MAX] = *cf;
+}
+
+static const struct mcp2510_events ch_events = {
+	.rx = ch_ev_rx,
+	.tx_done = ch_ev_tx_done,
+	.tx_aborted = ch_ev_tx_aborted,
+	.state = ch_ev_state,
+	.error = ch_ev_error,
+};
+
+struct ch_rig *ch_rig_new(unsigned int n, enum mcp2510_model model)
+{
+	struct ch_rig *rig = test_calloc(1, sizeof(*rig));
+	enum sim_variant sv = model == MCP2510_MODEL_MCP2510 ? SIM_MCP2510 :
+							       SIM_MCP2515;
+	unsigned int i;
+
+	assert_true(n <= CH_MAX_NODES);
+	sim_bus_init(&rig->bus);
+	rig->nnodes = n;
+	for (i = 0; i < n; i++) {
+		struct ch_node *node = &rig->node[i];
+
+		node->rig = rig;
+		assert_int_equal(sim_chip_init(&node->sim, sv, CH_OSC_HZ), 0);
+		assert_int_equal(sim_bus_attach(&rig->bus, &node->sim), 0);
+		assert_int_equal(mcp2510_init(&node->core,
+					      mcp2510_variant_get(model),
+					      CH_OSC_HZ, &ch_ops, &ch_events,
+					      node), 0);
+	}
+	return rig;
+}
+
+void ch_rig_free(struct ch_rig *rig)
+{
+	test_free(rig);
+}
+
+struct can_bittiming ch_bittiming(u32 bitrate)
+{
+	struct can_bittiming bt = { .bitrate = bitrate };
+
+	assert_int_equal(mcp2510_bittiming_calc(CH_OSC_HZ / 2, &bt), 0);
+	return bt;
+}
+
+int ch_start(struct ch_node *node, u32 bitrate, u32 ctrlmode)
+{
+	struct can_bittiming bt = ch_bittiming(bitrate);
+
+	return mcp2510_start(&node->core, &bt, ctrlmode);
+}
+
+bool ch_int_asserted(const struct ch_node *node)
+{
+	return !sim_chip_pin(&node->sim, SIM_PIN_INT);
+}
+
+unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret)
+{
+	unsigned int calls = 0;
+	int ret = 0;
+
+	while (calls < max && ch_int_asserted(node)) {
+		ret = mcp2510_irq_handle(&node->core);
+		calls++;
+	}
+	if (last_ret)
+		*last_ret = ret;
+	return calls;
+}
+
+static void ch_service_all(struct ch_rig *rig)
+{
+	unsigned int i;
+	int ret;
+
+	for (i = 0; i < rig->nnodes; i++) {
+		if (!rig->node[i].core.started)
+			continue;
+		ch_service(&rig->node[i], 16, &ret);
+		assert_true(ret >= 0);
+	}
+}
+
+void ch_run(struct ch_rig *rig, u64 ns)
+{
+	u64 end = sim_bus_now(&rig->bus) + ns;
+
+	ch_service_all(rig);
+	for (;;) {
+		u64 next = sim_bus_next_event(&rig->bus);
+
+		if (next > end) {
+			sim_bus_advance_to(&rig->bus, end);
+			ch_service_all(rig);
+			return;
+		}
+		sim_bus_advance_to(&rig->bus, next);
+		ch_service_all(rig);
+	}
+}
+
+void ch_run_idle(struct ch_rig *rig, u64 max_ns)
+{
+	u64 end = sim_bus_now(&rig->bus) + max_ns;
+
+	ch_service_all(rig);
+	while (sim_bus_now(&rig->bus) < end) {
+		u64 next = sim_bus_next_event(&rig->bus);
+
+		if (next == U64_MAX)
+			return;
+		sim_bus_advance_to(&rig->bus, next < end ? next : end);
+		ch_service_all(rig);
+	}
+}
+
+void ch_spi_mark(const struct ch_node *node, struct ch_spi_mark *m)
+{
+	const struct sim_counters *c = sim_chip_counters(&node->sim);
+
+	m->bytes = c->spi_bytes;
+	m->transfers = c->spi_transfers;
+}
+
+struct ch_spi_mark ch_spi_since(const struct ch_node *node,
+				const struct ch_spi_mark *m)
+{
+	struct ch_spi_mark now;
+
+	ch_spi_mark(node, &now);
+	now.bytes -= m->bytes;
+	now.transfers -= m->transfers;
+	return now;
+}
+
+/* A frame whose first four data bytes carry @seq (little endian). */
+struct can_frame ch_frame(canid_t id, u8 len, u32 seq)
+{
+	struct can_frame cf;
+	unsigned int i;
+
+	memset(&cf, 0, sizeof(cf));
+	cf.can_id = id;
+	cf.len = len;
+	for (i = 0; i < len && !(id & CAN_RTR_FLAG); i++)
+		cf.data[i] = i < 4 ? (u8)(seq >> (8 * i)) : (u8)(0xa0 + i);
+	return cf;
+}
+
+bool ch_frame_equal(const struct can_frame *a, const struct can_frame *b)
+{
+	return a->can_id == b->can_id && a->len == b->len &&
+	       !memcmp(a->data, b->data, a->len);
+}

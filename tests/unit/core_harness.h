@@ -1,0 +1,89 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * The portable driver core running against simulated chips: each node is
+ * a struct mcp2510_chip whose SPI transfers go to a struct sim_chip and
+ * whose delays advance the simulated bus.  Events are recorded for the
+ * tests; transport faults can be injected; the bus can be run while the
+ * interrupt line of every node is serviced.
+ */
+#ifndef CORE_HARNESS_H
+#define CORE_HARNESS_H
+
+#include "mcp2510_core.h"
+#include "mcp2510_sim.h"
+
+#define CH_MAX_NODES	3
+#define CH_LOG_MAX	64
+#define CH_OSC_HZ	16000000U
+
+struct ch_node;
+
+struct ch_events {
+	/* the last CH_LOG_MAX of each kind, and how many in all */
+	struct can_frame rx[CH_LOG_MAX];
+	unsigned int rx_count;
+	unsigned int tx_done[CH_LOG_MAX];
+	unsigned int tx_done_count;
+	unsigned int tx_aborted[CH_LOG_MAX];
+	unsigned int tx_aborted_count;
+	enum can_state state[CH_LOG_MAX];
+	unsigned int state_count;
+	struct can_frame error[CH_LOG_MAX];
+	unsigned int error_count;
+	/* optional per-test hooks, called after recording */
+	void (*on_rx)(struct ch_node *node, const struct can_frame *cf);
+	void (*on_tx_done)(struct ch_node *node, unsigned int slot);
+};
+
+struct ch_node {
+	struct ch_rig *rig;
+	struct sim_chip sim;
+	struct mcp2510_chip core;
+	struct ch_events ev;
+	/* transport faults: fail transfer number fail_at (1-based, 0: never) */
+	u64 xfer_count;
+	u64 fail_at;
+	bool fail_reaches_chip;	/* the failed transfer still happened */
+	void *test_ctx;
+};
+
+struct ch_rig {
+	struct sim_bus bus;
+	struct ch_node node[CH_MAX_NODES];
+	unsigned int nnodes;
+};
+
+/* SPI traffic of a node between two points of a test */
+struct ch_spi_mark {
+	u64 bytes, transfers;
+};
+
+/* Allocates (test_calloc) a bus with @n nodes of @variant, not started. */
+struct ch_rig *ch_rig_new(unsigned int n, enum mcp2510_model model);
+void ch_rig_free(struct ch_rig *rig);
+
+/* 16 MHz oscillator, timing from the calculator; 0 or -errno */
+int ch_start(struct ch_node *node, u32 bitrate, u32 ctrlmode);
+struct can_bittiming ch_bittiming(u32 bitrate);
+
+/* INT low (active)? */
+bool ch_int_asserted(const struct ch_node *node);
+/*
+ * Call mcp2510_irq_handle() while INT is asserted (at most @max times) and
+ * return the number of calls; the last result in *last_ret.
+ */
+unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret);
+/* Run the bus for @ns, servicing every node's interrupt after each event. */
+void ch_run(struct ch_rig *rig, u64 ns);
+/* Run until the bus is idle with nothing pending and no INT asserted. */
+void ch_run_idle(struct ch_rig *rig, u64 max_ns);
+
+void ch_spi_mark(const struct ch_node *node, struct ch_spi_mark *m);
+/* Traffic since @m */
+struct ch_spi_mark ch_spi_since(const struct ch_node *node,
+				const struct ch_spi_mark *m);
+
+struct can_frame ch_frame(canid_t id, u8 len, u32 seq);
+bool ch_frame_equal(const struct can_frame *a, const struct can_frame *b);
+
+#endif /* CORE_HARNESS_H */

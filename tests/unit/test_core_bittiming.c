@@ -1,0 +1,266 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Bit timing: the chip's limits, CNF1..CNF3 encoding with the data sheet's
+ * and AN739's rules, decoding, and the calculator against the kernel's
+ * choices as can-calc-bit-timing prints them (core_bittiming_vectors.h).
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "mcp2510_core.h"
+#include "core_bittiming_vectors.h"
+
+static struct can_bittiming timing(u32 prop, u32 ps1, u32 ps2, u32 sjw,
+				   u32 brp)
+{
+	struct can_bittiming bt = {
+		.prop_seg = prop, .phase_seg1 = ps1, .phase_seg2 = ps2,
+		.sjw = sjw, .brp = brp,
+	};
+	return bt;
+}
+
+static void test_const_matches_the_chip(void **state)
+{
+	const struct can_bittiming_const *c = &mcp2510_bittiming_const;
+
+	(void)state;
+	assert_string_equal(c->name, "mcp2510");
+	assert_int_equal(c->tseg1_min, 3);
+	assert_int_equal(c->tseg1_max, 16);
+	assert_int_equal(c->tseg2_min, 2);
+	assert_int_equal(c->tseg2_max, 8);
+	assert_int_equal(c->sjw_max, 4);
+	assert_int_equal(c->brp_min, 1);
+	assert_int_equal(c->brp_max, 64);
+	assert_int_equal(c->brp_inc, 1);
+}
+
+/* AN739 example 2: 125 kbit/s at 16 MHz is CNF1 0x07, CNF2 0x90, CNF3 0x02 */
+static void test_an739_example(void **state)
+{
+	struct can_bittiming bt = timing(1, 3, 3, 1, 8), back;
+	u8 cnf[3];
+
+	(void)state;
+	assert_int_equal(mcp2510_bittiming_encode(&bt, 0, cnf), 0);
+	assert_int_equal(cnf[0], 0x07);
+	assert_int_equal(cnf[1], 0x90);
+	assert_int_equal(cnf[2], 0x02);
+
+	mcp2510_bittiming_decode(cnf, 16000000, &back);
+	assert_int_equal(back.bitrate, 125000);
+	assert_int_equal(back.tq, 1000);
+	assert_int_equal(back.prop_seg, 1);
+	assert_int_equal(back.phase_seg1, 3);
+	assert_int_equal(back.phase_seg2, 3);
+	assert_int_equal(back.sjw, 1);
+	assert_int_equal(back.brp, 8);
+	assert_int_equal(back.sample_point, 625);
+}
+
+static void test_encode_fields_and_flags(void **state)
+{
+	struct can_bittiming bt = timing(8, 8, 8, 4, 64);
+	u8 cnf[3];
+
+	(void)state;
+	assert_int_equal(mcp2510_bittiming_encode(&bt, 0, cnf), 0);
+	assert_int_equal(cnf[0], 0xff);		/* SJW 4, BRP 64 */
+	assert_int_equal(cnf[1], 0xbf);		/* BTLMODE, PS1 8, PRSEG 8 */
+	assert_int_equal(cnf[2], 0x07);		/* PS2 8 */
+
+	assert_int_equal(mcp2510_bittiming_encode(&bt, CAN_CTRLMODE_3_SAMPLES,
+						  cnf), 0);
+	assert_int_equal(cnf[1], 0xff);		/* ... and SAM */
+
+	bt = timing(1, 1, 2, 1, 1);
+	assert_int_equal(mcp2510_bittiming_encode(&bt, 0, cnf), 0);
+	assert_int_equal(cnf[0], 0x00);
+	assert_int_equal(cnf[1], 0x80);
+	assert_int_equal(cnf[2], 0x01);
+}
+
+static void test_encode_refuses_broken_timing(void **state)
+{
+	static const struct {
+		const char *why;
+		u32 prop, ps1, ps2, sjw, brp;
+	} bad[] = {
+		{ "PRSEG 0", 0, 4, 2, 1, 1 },
+		{ "PRSEG 9", 9, 4, 2, 1, 1 },
+		{ "PS1 0", 4, 0, 2, 1, 1 },
+		{ "PS1 9", 4, 9, 2, 1, 1 },
+		{ "PS2 1 (below IPT)", 4, 4, 1, 1, 1 },
+		{ "PS2 9", 8, 8, 9, 1, 1 },
+		{ "SJW 0", 4, 4, 3, 0, 1 },
+		{ "SJW 5", 8, 8, 8, 5, 1 },
+		{ "BRP 0", 4, 4, 3, 1, 0 },
+		{ "BRP 65", 4, 4, 3, 1, 65 },
+		{ "PRSEG + PS1 < PS2", 1, 2, 4, 1, 1 },
+		{ "PS2 == SJW", 4, 4, 2, 2, 1 },
+		{ "PS2 < SJW", 4, 4, 3, 4, 1 },
+	};
+	unsigned int i;
+	u8 cnf[3];
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(bad); i++) {
+		struct can_bittiming bt = timing(bad[i].prop, bad[i].ps1,
+						 bad[i].ps2, bad[i].sjw,
+						 bad[i].brp);
+
+		if (mcp2510_bittiming_encode(&bt, 0, cnf) != -EINVAL)
+			fail_msg("accepted: %s", bad[i].why);
+	}
+}
+
+/* Without BTLMODE the chip makes PS2 the larger of PS1 and IPT (2 TQ). */
+static void test_decode_without_btlmode(void **state)
+{
+	const u8 short_ps1[3] = { 0x00, 0x01, 0x05 };	/* PS1 1, PRSEG 2 */
+	const u8 long_ps1[3] = { 0x00, 0x28, 0x05 };	/* PS1 6, PRSEG 1 */
+	struct can_bittiming bt;
+
+	(void)state;
+	mcp2510_bittiming_decode(short_ps1, 16000000, &bt);
+	assert_int_equal(bt.phase_seg2, 2);
+	mcp2510_bittiming_decode(long_ps1, 16000000, &bt);
+	assert_int_equal(bt.phase_seg2, 6);
+}
+
+/* The datasheet's limits and AN739's rules, checked independently. */
+static void assert_chip_can_run(const struct can_bittiming *bt)
+{
+	assert_in_range(bt->prop_seg, 1, 8);
+	assert_in_range(bt->phase_seg1, 1, 8);
+	assert_in_range(bt->phase_seg2, 2, 8);
+	assert_in_range(bt->sjw, 1, 4);
+	assert_in_range(bt->brp, 1, 64);
+	assert_true(bt->prop_seg + bt->phase_seg1 >= bt->phase_seg2);
+	assert_true(bt->phase_seg2 > bt->sjw);
+}
+
+/* name the pair that failed */
+#define vector_assert(v, cond) do {					\
+	if (!(cond))							\
+		fail_msg("osc %u Hz, %u bit/s: %s", (v)->osc_hz,	\
+			 (v)->bitrate, #cond);				\
+} while (0)
+
+static void check_vector(const struct bt_vector *v)
+{
+	struct can_bittiming bt = { .bitrate = v->bitrate }, back;
+	u8 cnf[3];
+	int err;
+
+	err = mcp2510_bittiming_calc(v->osc_hz / 2, &bt);
+	if (!v->possible) {
+		vector_assert(v, err == -EDOM);
+		return;
+	}
+	vector_assert(v, err == 0);
+	assert_chip_can_run(&bt);
+	vector_assert(v, mcp2510_bittiming_encode(&bt, 0, cnf) == 0);
+
+	vector_assert(v, bt.bitrate == v->real_bitrate);
+	vector_assert(v, bt.sample_point == v->sample_point);
+	if (v->tie) {
+		/* same result, Linux 6.1 keeps the smaller prescaler */
+		vector_assert(v, bt.brp < v->brp);
+	} else {
+		vector_assert(v, bt.tq == v->tq);
+		vector_assert(v, bt.prop_seg == v->prop_seg);
+		vector_assert(v, bt.phase_seg1 == v->phase_seg1);
+		vector_assert(v, bt.phase_seg2 == v->phase_seg2);
+		vector_assert(v, bt.sjw == v->sjw);
+		vector_assert(v, bt.brp == v->brp);
+		vector_assert(v, cnf[0] == v->cnf1);
+		vector_assert(v, cnf[1] == v->cnf2);
+		vector_assert(v, cnf[2] == v->cnf3);
+	}
+
+	mcp2510_bittiming_decode(cnf, v->osc_hz, &back);
+	vector_assert(v, back.bitrate == bt.bitrate);
+	vector_assert(v, back.sample_point == bt.sample_point);
+	vector_assert(v, back.brp == bt.brp);
+	vector_assert(v, back.prop_seg == bt.prop_seg);
+	vector_assert(v, back.phase_seg1 == bt.phase_seg1);
+	vector_assert(v, back.phase_seg2 == bt.phase_seg2);
+	vector_assert(v, back.sjw == bt.sjw);
+}
+
+static void test_calc_matches_the_kernel(void **state)
+{
+	unsigned int i, possible = 0, ties = 0;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(bt_vectors); i++) {
+		const struct bt_vector *v = &bt_vectors[i];
+
+		check_vector(v);
+		possible += v->possible;
+		ties += v->tie;
+	}
+	print_message("%u pairs, %u possible, %u ties\n",
+		      (unsigned int)ARRAY_SIZE(bt_vectors), possible, ties);
+	assert_true(ARRAY_SIZE(bt_vectors) >= 50);
+}
+
+static void test_calc_sample_point_and_sjw_requests(void **state)
+{
+	struct can_bittiming bt = { .bitrate = 500000, .sample_point = 750 };
+
+	(void)state;
+	/* 16 MHz: 16 TQ of 125 ns, 12/16 = 75.0 % */
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), 0);
+	assert_int_equal(bt.sample_point, 750);
+	assert_int_equal(bt.brp, 1);
+	assert_int_equal(bt.prop_seg + bt.phase_seg1 + bt.phase_seg2 + 1, 16);
+	assert_int_equal(bt.phase_seg2, 4);
+
+	/* SJW asked for is capped at the chip's 4 and at PS2 */
+	bt = (struct can_bittiming){ .bitrate = 500000, .sample_point = 750,
+				     .sjw = 7 };
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), 0);
+	assert_int_equal(bt.sjw, 4);
+	bt = (struct can_bittiming){ .bitrate = 500000, .sjw = 3 };
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), 0);
+	assert_int_equal(bt.phase_seg2, 2);
+	assert_int_equal(bt.sjw, 2);
+}
+
+static void test_calc_refuses_nonsense(void **state)
+{
+	struct can_bittiming bt = { .bitrate = 0 };
+
+	(void)state;
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), -EINVAL);
+	bt = (struct can_bittiming){ .bitrate = 125000, .sample_point = 1000 };
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), -EINVAL);
+	bt = (struct can_bittiming){ .bitrate = 125000 };
+	assert_int_equal(mcp2510_bittiming_calc(0, &bt), -EINVAL);
+	/* 5 MHz bit rate from an 8 MHz CAN clock: not even 2 TQ */
+	bt = (struct can_bittiming){ .bitrate = 5000000 };
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), -EDOM);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_const_matches_the_chip),
+		cmocka_unit_test(test_an739_example),
+		cmocka_unit_test(test_encode_fields_and_flags),
+		cmocka_unit_test(test_encode_refuses_broken_timing),
+		cmocka_unit_test(test_decode_without_btlmode),
+		cmocka_unit_test(test_calc_matches_the_kernel),
+		cmocka_unit_test(test_calc_sample_point_and_sjw_requests),
+		cmocka_unit_test(test_calc_refuses_nonsense),
+	};
+
+	return cmocka_run_group_tests_name("core_bittiming", tests, NULL, NULL);
+}

@@ -1,0 +1,306 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Acceptance filters: the sysfs/CLI text forms, register encoding, and
+ * what a simulated chip programmed by the core lets through (the default,
+ * AN739's example configuration, receive modes).
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "core_harness.h"
+
+#define MS	1000000ULL
+
+static int parse(const char *s, struct mcp2510_filter_id *id)
+{
+	return mcp2510_filter_id_parse(s, strlen(s), id);
+}
+
+static void test_parse_ids(void **state)
+{
+	struct mcp2510_filter_id id;
+
+	(void)state;
+	assert_int_equal(parse("7ff", &id), 0);
+	assert_int_equal(id.id, 0x7ff);
+	assert_false(id.ext);
+	assert_int_equal(parse("1fffffffx", &id), 0);
+	assert_int_equal(id.id, 0x1fffffff);
+	assert_true(id.ext);
+	assert_int_equal(parse("0", &id), 0);
+	assert_int_equal(id.id, 0);
+	assert_int_equal(parse("ABCx\n", &id), 0);	/* as echo writes it */
+	assert_int_equal(id.id, 0xabc);
+	assert_true(id.ext);
+	assert_int_equal(parse("000007ff", &id), 0);
+	assert_int_equal(id.id, 0x7ff);
+}
+
+static void test_parse_refuses_and_keeps_the_old_value(void **state)
+{
+	static const char *const bad[] = {
+		"", "\n", "x", "800", "20000000x", "0x7ff", "7fg", "-1",
+		" 7ff", "7ff ", "7ffxx", "123456789x", "7f\nf",
+	};
+	struct mcp2510_filter_id id = { .id = 0x42, .ext = true };
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(bad); i++) {
+		if (parse(bad[i], &id) != -EINVAL)
+			fail_msg("accepted \"%s\"", bad[i]);
+		assert_int_equal(id.id, 0x42);
+		assert_true(id.ext);
+	}
+	/* only @len characters count */
+	assert_int_equal(mcp2510_filter_id_parse("7ff", 2, &id), 0);
+	assert_int_equal(id.id, 0x7f);
+}
+
+static void test_format_round_trips(void **state)
+{
+	static const struct mcp2510_filter_id ids[] = {
+		{ 0, false }, { 0x7ff, false }, { 0x10, false },
+		{ 0, true }, { 0x1fffffff, true }, { 0x12345, true },
+	};
+	static const char *const text[] = {
+		"0", "7ff", "10", "0x", "1fffffffx", "12345x",
+	};
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(ids); i++) {
+		char buf[12];
+		struct mcp2510_filter_id back;
+		int len = mcp2510_filter_id_format(&ids[i], buf);
+
+		assert_string_equal(buf, text[i]);
+		assert_int_equal(len, strlen(text[i]));
+		assert_int_equal(parse(buf, &back), 0);
+		assert_int_equal(back.id, ids[i].id);
+		assert_int_equal(back.ext, ids[i].ext);
+	}
+}
+
+static void test_rxm_names(void **state)
+{
+	static const char *const names[] = { "filtered", "std", "ext", "any" };
+	unsigned int i;
+	u8 rxm = 9;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(names); i++) {
+		assert_int_equal(mcp2510_rxm_parse(names[i], strlen(names[i]),
+						   &rxm), 0);
+		assert_int_equal(rxm, i);
+		assert_string_equal(mcp2510_rxm_name(i), names[i]);
+	}
+	assert_int_equal(mcp2510_rxm_parse("any\n", 4, &rxm), 0);
+	assert_int_equal(rxm, MCP2510_RXM_ANY);
+	assert_int_equal(mcp2510_rxm_parse("an", 2, &rxm), -EINVAL);
+	assert_int_equal(mcp2510_rxm_parse("anyx", 4, &rxm), -EINVAL);
+	assert_int_equal(mcp2510_rxm_parse("", 0, &rxm), -EINVAL);
+	assert_int_equal(mcp2510_rxm_parse("ANY", 3, &rxm), -EINVAL);
+	assert_null(mcp2510_rxm_name(4));
+}
+
+static void test_register_encoding(void **state)
+{
+	const struct mcp2510_filter_id std = { 0x5a3, false };
+	const struct mcp2510_filter_id ext = { 0x155u << 18 | 2u << 16 | 0x1234,
+					       true };
+	u8 regs[MCP2510_ID_LEN];
+
+	(void)state;
+	mcp2510_filter_id_encode(&std, false, regs);
+	assert_int_equal(regs[0], 0x5a3 >> 3);
+	assert_int_equal(regs[1], (0x5a3 & 7) << 5);
+	assert_int_equal(regs[2], 0);
+	assert_int_equal(regs[3], 0);
+
+	mcp2510_filter_id_encode(&ext, false, regs);
+	assert_int_equal(regs[0], 0x155 >> 3);
+	assert_int_equal(regs[1], (0x155 & 7) << 5 | MCP2510_SIDL_EXIDE | 2);
+	assert_int_equal(regs[2], 0x12);
+	assert_int_equal(regs[3], 0x34);
+
+	/* a mask has no EXIDE */
+	mcp2510_filter_id_encode(&ext, true, regs);
+	assert_int_equal(regs[1], (0x155 & 7) << 5 | 2);
+}
+
+static void test_check_and_apply(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct mcp2510_chip *chip = &rig->node[0].core;
+	struct mcp2510_filters f;
+
+	(void)state;
+	mcp2510_filters_default(&f);
+	f.filter[2].id = 0x800;		/* too wide for a standard id */
+	assert_int_equal(mcp2510_filters_apply(chip, &f), -EINVAL);
+	f.filter[2].id = 0x20000000;
+	f.filter[2].ext = true;		/* ... and for an extended one */
+	assert_int_equal(mcp2510_filters_apply(chip, &f), -EINVAL);
+	f.filter[2].id = 0x7ff;
+	f.filter[2].ext = false;
+	f.rxm[1] = 4;
+	assert_int_equal(mcp2510_filters_apply(chip, &f), -EINVAL);
+	f.rxm[1] = MCP2510_RXM_ANY;
+	assert_int_equal(mcp2510_filters_apply(chip, &f), 0);
+	assert_int_equal(chip->filters.rxm[1], MCP2510_RXM_ANY);
+
+	assert_int_equal(ch_start(&rig->node[0], 500000, 0), 0);
+	assert_int_equal(mcp2510_filters_apply(chip, &f), -EBUSY);
+	/* programmed at start */
+	assert_int_equal(sim_chip_peek(&rig->node[0].sim, MCP2510_REG_RXFSIDH(2)),
+			 0xff);
+	assert_int_equal(sim_chip_peek(&rig->node[0].sim, MCP2510_REG_RXFSIDL(2)),
+			 0xe0);
+	ch_rig_free(rig);
+}
+
+/* Send @ids from node 1 (started with default filters), count what node 0 got. */
+static unsigned int deliver(struct ch_rig *rig, const canid_t *ids,
+			    unsigned int n, bool *got)
+{
+	unsigned int i, before = rig->node[0].ev.rx_count;
+
+	for (i = 0; i < n; i++) {
+		struct can_frame cf = ch_frame(ids[i], 2, i);
+		unsigned int count = rig->node[0].ev.rx_count;
+
+		assert_true(mcp2510_tx_submit(&rig->node[1].core, &cf) >= 0);
+		ch_run_idle(rig, 10 * MS);
+		got[i] = rig->node[0].ev.rx_count > count;
+		if (got[i])
+			assert_true(ch_frame_equal(&rig->node[0].ev.rx[count %
+							CH_LOG_MAX], &cf));
+	}
+	return rig->node[0].ev.rx_count - before;
+}
+
+static struct ch_rig *filter_rig(const struct mcp2510_filters *f)
+{
+	struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2510);
+
+	if (f)
+		assert_int_equal(mcp2510_filters_apply(&rig->node[0].core, f),
+				 0);
+	assert_int_equal(ch_start(&rig->node[0], 500000, 0), 0);
+	assert_int_equal(ch_start(&rig->node[1], 500000, 0), 0);
+	return rig;
+}
+
+static const canid_t mixed_ids[] = {
+	0x000, 0x7ff, 0x500, 0x123, CAN_EFF_FLAG | 0x1fffffff,
+	CAN_EFF_FLAG | 0x0, CAN_EFF_FLAG | 0x1400000, 0x123 | CAN_RTR_FLAG,
+};
+
+static void test_default_accepts_everything(void **state)
+{
+	struct ch_rig *rig = filter_rig(NULL);
+	bool got[ARRAY_SIZE(mixed_ids)];
+
+	(void)state;
+	assert_int_equal(deliver(rig, mixed_ids, ARRAY_SIZE(mixed_ids), got),
+			 ARRAY_SIZE(mixed_ids));
+	ch_rig_free(rig);
+}
+
+/*
+ * AN739 example 3: RXB0 shut out (mask and filters all ones, extended
+ * filters), RXB1 takes exactly 0x500, 0x508, 0x510 and 0x518 through
+ * filters 2-5 under an all-ones standard mask.
+ */
+static void test_an739_example(void **state)
+{
+	static const canid_t ids[] = {
+		0x500, 0x508, 0x510, 0x518, 0x501, 0x520, 0x123, 0x7ff,
+		CAN_EFF_FLAG | 0x500, CAN_EFF_FLAG | 0x1fffffff,
+	};
+	/* AN739: only an all-ones extended frame still gets into RXB0 */
+	static const bool want[] = {
+		true, true, true, true, false, false, false, false,
+		false, true,
+	};
+	struct mcp2510_filters f;
+	struct ch_rig *rig;
+	bool got[ARRAY_SIZE(ids)];
+	unsigned int i;
+
+	(void)state;
+	mcp2510_filters_default(&f);
+	f.mask[0] = (struct mcp2510_filter_id){ 0x1fffffff, true };
+	f.filter[0] = (struct mcp2510_filter_id){ 0x1fffffff, true };
+	f.filter[1] = (struct mcp2510_filter_id){ 0x1fffffff, true };
+	f.mask[1] = (struct mcp2510_filter_id){ 0x7ff, false };
+	f.filter[2] = (struct mcp2510_filter_id){ 0x500, false };
+	f.filter[3] = (struct mcp2510_filter_id){ 0x508, false };
+	f.filter[4] = (struct mcp2510_filter_id){ 0x510, false };
+	f.filter[5] = (struct mcp2510_filter_id){ 0x518, false };
+	rig = filter_rig(&f);
+
+	deliver(rig, ids, ARRAY_SIZE(ids), got);
+	for (i = 0; i < ARRAY_SIZE(ids); i++)
+		if (got[i] != want[i])
+			fail_msg("id %x: got %d, want %d", ids[i], got[i],
+				 want[i]);
+	/* the last standard one went to RXB1 through filter 5 */
+	assert_int_equal(sim_chip_peek(&rig->node[0].sim,
+				       MCP2510_REG_RXBCTRL(1)) &
+			 MCP2510_RXB1CTRL_FILHIT_MASK, 5);
+	ch_rig_free(rig);
+}
+
+static void test_receive_modes(void **state)
+{
+	static const canid_t ids[] = {
+		0x123, CAN_EFF_FLAG | 0x123, 0x7ff, CAN_EFF_FLAG | 0x1fffffff,
+	};
+	struct mcp2510_filters f;
+	struct ch_rig *rig;
+	bool got[ARRAY_SIZE(ids)];
+
+	(void)state;
+	/* RXB0 takes only standard frames, RXB1 nothing but extended 0 */
+	mcp2510_filters_default(&f);
+	f.rxm[0] = MCP2510_RXM_STD;
+	f.mask[1] = (struct mcp2510_filter_id){ 0x1fffffff, true };
+	f.rxm[1] = MCP2510_RXM_EXT;
+	f.rollover = false;
+	rig = filter_rig(&f);
+	deliver(rig, ids, ARRAY_SIZE(ids), got);
+	assert_true(got[0]);
+	assert_false(got[1]);
+	assert_true(got[2]);
+	assert_false(got[3]);
+	ch_rig_free(rig);
+
+	/* "any" on RXB1 takes what RXB0 refuses */
+	f.rxm[1] = MCP2510_RXM_ANY;
+	rig = filter_rig(&f);
+	deliver(rig, ids, ARRAY_SIZE(ids), got);
+	assert_true(got[0] && got[1] && got[2] && got[3]);
+	ch_rig_free(rig);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_parse_ids),
+		cmocka_unit_test(test_parse_refuses_and_keeps_the_old_value),
+		cmocka_unit_test(test_format_round_trips),
+		cmocka_unit_test(test_rxm_names),
+		cmocka_unit_test(test_register_encoding),
+		cmocka_unit_test(test_check_and_apply),
+		cmocka_unit_test(test_default_accepts_everything),
+		cmocka_unit_test(test_an739_example),
+		cmocka_unit_test(test_receive_modes),
+	};
+
+	return cmocka_run_group_tests_name("core_filter", tests, NULL, NULL);
+}
