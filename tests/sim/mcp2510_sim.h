@@ -18,7 +18,9 @@
  *
  * Transmit requests made at the same bus time contend in one arbitration:
  * a frame starts at the first sim_bus_advance() after a request, never
- * inside the SPI call that made it.
+ * inside the SPI call that made it.  Callbacks (pins, monitor) run inside
+ * sim_bus_advance() and may do SPI transfers; a nested sim_bus_advance()
+ * from a callback does nothing.  Nothing here locks: one caller at a time.
  *
  * Start-up: after power-on or a RESET instruction (taking effect when chip
  * select rises) the chip is not ready for 128 oscillator cycles
@@ -30,6 +32,9 @@
  *
  * Unknown instructions (including the MCP2515-only ones on an MCP2510) and
  * unpowered chips behave the same way: no effect, MISO reads 0xff.
+ *
+ * tests/sim/README.md lists every choice the data sheets leave open and
+ * what is not modelled.
  */
 #ifndef MCP2510_SIM_H
 #define MCP2510_SIM_H
@@ -181,6 +186,7 @@ struct sim_bus {
 	struct sim_bus_faults faults;
 	void (*monitor)(void *ctx, const struct sim_bus_record *rec);
 	void *monitor_ctx;
+	bool advancing;			/* inside sim_bus_advance*() */
 };
 
 /* ---- Bus ---------------------------------------------------------------- */
@@ -188,7 +194,10 @@ struct sim_bus {
 void sim_bus_init(struct sim_bus *bus);
 /* Returns 0, -ENOSPC when SIM_MAX_NODES chips are attached, -EBUSY if attached. */
 int sim_bus_attach(struct sim_bus *bus, struct sim_chip *chip);
-/* Run bus time forward by ns, processing every event on the way. */
+/*
+ * Run bus time forward by ns, processing every event on the way (work is
+ * proportional to the events, not to the time: an idle bus jumps).
+ */
 void sim_bus_advance(struct sim_bus *bus, u64 ns);
 /* Run bus time forward to an absolute time (no-op if in the past). */
 void sim_bus_advance_to(struct sim_bus *bus, u64 when);
@@ -196,6 +205,7 @@ u64 sim_bus_now(const struct sim_bus *bus);
 /* Absolute time of the next scheduled change, U64_MAX when nothing is pending. */
 u64 sim_bus_next_event(const struct sim_bus *bus);
 bool sim_bus_idle(const struct sim_bus *bus);
+/* fn runs at the end of every frame or error frame on the bus (not loopback). */
 void sim_bus_set_monitor(struct sim_bus *bus,
 			 void (*fn)(void *ctx, const struct sim_bus_record *rec),
 			 void *ctx);

@@ -468,6 +468,9 @@ void sim_bus_advance_to(struct sim_bus *bus, u64 when)
 {
 	unsigned int same_instant = 0;
 
+	if (bus->advancing)
+		return;		/* called from a callback: the outer loop goes on */
+	bus->advancing = true;
 	while (same_instant < SIM_MAX_STEPS_PER_INSTANT) {
 		u64 next = sim_bus_next_event(bus);
 
@@ -483,6 +486,7 @@ void sim_bus_advance_to(struct sim_bus *bus, u64 when)
 	}
 	if (when > bus->now)
 		bus->now = when;
+	bus->advancing = false;
 }
 
 void sim_bus_advance(struct sim_bus *bus, u64 ns)

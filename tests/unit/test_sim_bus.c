@@ -598,6 +598,49 @@ static void test_listen_only(void **state)
 	assert_true(simh_read(b, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
 }
 
+struct isr_state {
+	unsigned int frames;
+	bool nested_advance_ignored;
+};
+
+/* an interrupt handler as a driver has one: INT low -> empty RXB0 */
+static void rx_isr(void *ctx, struct sim_chip *chip, enum sim_pin pin, bool level)
+{
+	struct isr_state *st = ctx;
+	struct can_frame cf;
+	u64 now;
+
+	if (pin != SIM_PIN_INT || level)
+		return;
+	now = sim_bus_now(chip->bus);
+	sim_bus_advance(chip->bus, 1000);
+	st->nested_advance_ignored = sim_bus_now(chip->bus) == now;
+	while (simh_read_status(chip) & MCP2510_STATUS_RX0IF) {
+		simh_read_rx(chip, 0, &cf, true);
+		assert_int_equal(cf.data[0], (u8)st->frames);
+		st->frames++;
+	}
+}
+
+/* Pin callbacks may talk SPI: an INT-driven receiver keeps up with a flood. */
+static void test_interrupt_driven_receive(void **state)
+{
+	struct rig *r = *state;
+	struct sim_chip *chip = &r->chip[0];
+	struct can_frame cf = simh_frame(0x80, 1, (const u8[]){ 0 });
+	struct isr_state st = { 0 };
+
+	simh_write(chip, MCP2510_REG_CANINTE, MCP2510_INT_RX0);
+	sim_chip_set_pin_cb(chip, rx_isr, &st);
+	assert_int_equal(sim_phantom_flood(&r->bus, &cf, 50, 0), 0);
+	simh_run_idle(&r->bus, 100 * MS);
+	assert_int_equal(st.frames, 50);
+	assert_true(st.nested_advance_ignored);
+	assert_int_equal(sim_chip_counters(chip)->overflows, 0);
+	assert_int_equal(sim_chip_counters(chip)->interrupts, 50);
+	assert_true(sim_chip_pin(chip, SIM_PIN_INT));
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -614,6 +657,7 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_phantom_node, setup_one, teardown),
 		cmocka_unit_test_setup_teardown(test_loopback, setup_two, teardown),
 		cmocka_unit_test_setup_teardown(test_listen_only, setup_two, teardown),
+		cmocka_unit_test_setup_teardown(test_interrupt_driven_receive, setup_one, teardown),
 	};
 
 	return cmocka_run_group_tests_name("sim_bus", tests, NULL, NULL);
