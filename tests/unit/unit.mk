@@ -51,7 +51,7 @@ UNIT_FLAGS_coverage := --coverage -O0
 unit_objs = $(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(UNIT_DIR)/$(2).c $($(2)_SRCS))
 
 define UNIT_FLAVOUR_RULES
-$(BUILD)/$(1)/obj/%.o: $(TOP)/%.c
+$(BUILD)/$(1)/obj/%.o: $(TOP)/%.c | unit-deps
 	@mkdir -p $$(@D)
 	$$(CC) $$(UNIT_CFLAGS) $$(UNIT_FLAGS_$(1)) -MMD -MP -c $$< -o $$@
 
