@@ -216,7 +216,9 @@ struct sim_bus_faults *sim_bus_faults(struct sim_bus *bus);
 /*
  * Power-on state, powered.  The start-up time runs from sim_bus_attach()
  * (a chip on no bus has no clock and is ready at once).  osc_hz must be
- * 1 kHz..100 MHz, else -EINVAL.
+ * 1 kHz..100 MHz, else -EINVAL.  Call it once per chip, before
+ * sim_bus_attach(): it forgets the bus (use sim_chip_power() or the RESET
+ * instruction to reset an attached chip).
  */
 int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz);
 /* One chip-select-low period: len bytes out on MOSI (tx), in on MISO (rx, may be NULL). */
