@@ -286,9 +286,11 @@
  * extended filter only extended ones (EXIDE).  A standard mask compares the
  * 11 identifier bits (of an extended frame: its top 11 bits), an extended
  * mask all 29.  A set mask bit means the identifier bit must equal the
- * filter's.  The default accepts every frame: both masks 0 (no bit must
- * match), both buffers "filtered", rollover 1.  Anything else is refused
- * with EINVAL and leaves the previous setting.
+ * filter's.  A filter takes only frames of its own format even when its
+ * mask is 0, so the default, which accepts every frame, has both masks 0
+ * (no bit must match), filters 0, 2 and 4 standard and 1, 3 and 5
+ * extended (all 0), both buffers "filtered" and rollover 1.  Anything else
+ * is refused with EINVAL and leaves the previous setting.
  */
 #define MCP2510_SYSFS_GROUP		"mcp2510"
 
