@@ -12,6 +12,11 @@ static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 	struct ch_node *node = ctx;
 
 	node->xfer_count++;
+	if (node->miso_stuck >= 0) {
+		if (rx)
+			memset(rx, node->miso_stuck, len);
+		return 0;
+	}
 	if (node->fail_at && node->xfer_count == node->fail_at) {
 		if (node->fail_reaches_chip)
 			sim_chip_spi(&node->sim, tx, rx, len);
@@ -96,6 +101,7 @@ struct ch_rig *ch_rig_new(unsigned int n, enum mcp2510_model model)
 		struct ch_node *node = &rig->node[i];
 
 		node->rig = rig;
+		node->miso_stuck = -1;
 		assert_int_equal(sim_chip_init(&node->sim, sv, CH_OSC_HZ), 0);
 		assert_int_equal(sim_bus_attach(&rig->bus, &node->sim), 0);
 		assert_int_equal(mcp2510_init(&node->core,

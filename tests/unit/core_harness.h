@@ -44,6 +44,8 @@ struct ch_node {
 	u64 xfer_count;
 	u64 fail_at;
 	bool fail_reaches_chip;	/* the failed transfer still happened */
+	/* a broken board: MISO always reads this (-1: a working line) */
+	int miso_stuck;
 	void *test_ctx;
 };
 

@@ -40,6 +40,8 @@ UNIT_SUITES += test_core_frame
 test_core_frame_SRCS := $(UNIT_CORE_SRCS)
 UNIT_SUITES += test_core_filter
 test_core_filter_SRCS := $(UNIT_CORE_SRCS)
+UNIT_SUITES += test_core_bringup
+test_core_bringup_SRCS := $(UNIT_CORE_SRCS)
 
 # ---- rules (no need to touch these to add a suite) ------------------------
 UNIT_FLAVOURS := unit unit-asan coverage
