@@ -114,18 +114,29 @@ install-userspace: userspace
 		$(DESTDIR)$(PREFIX)/include/linux/can/
 
 userspace-check: userspace
+	@$(ENSURE) can-utils binutils
 	@$(TOP)/$(US_DIR)/check-userspace $(US_OUT) $(TOP)/$(US_DIR)/include/mcp2510.h
 
 CHECK_STEPS += userspace-check
 
 # ---- the cmocka suites of tests/unit/unit.mk ----------------------------
-# Their sources need the userspace include paths, and the transport suite
-# links with the system calls and libgpiod wrapped by its mocks.
-US_TEST_SRCS := $(wildcard $(TOP)/tests/unit/test_userspace_*.c \
-			   $(TOP)/tests/unit/userspace_*.c)
-US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(US_TEST_SRCS)) \
+# Source lists the suites' lines in unit.mk name.  Their sources need the
+# userspace include paths, and the transport suite links with the system
+# calls and libgpiod wrapped by its mocks (and without the chip model).
+US_UNIT_LIB_SRCS := $(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS) \
+		    $(US_DIR)/lib/sim_transport.c $(SIM_SRCS)
+US_UNIT_TEXT_SRCS := $(US_TOOL_SRCS) $(US_UNIT_LIB_SRCS)
+US_UNIT_TRANSPORT_SRCS := $(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS) \
+			  $(US_DIR)/lib/sim_absent.c
+US_UNIT_CTL_SRCS := $(filter-out %/mcp2510ctl.c,$(US_CTL_SRCS)) \
+		    $(US_DIR)/tools/bridge.c $(US_UNIT_TEXT_SRCS)
+
+US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(wildcard \
+			$(TOP)/tests/unit/test_userspace_*.c \
+			$(TOP)/tests/unit/userspace_*.c)) \
 		$(patsubst %.c,%.o,$(US_LIB_SRCS) $(US_DIR)/lib/sim_transport.c \
-			$(US_TOOL_SRCS) $(US_CTL_SRCS) $(US_DAEMON_SRCS))
+			$(US_DIR)/lib/sim_absent.c $(US_TOOL_SRCS) $(US_CTL_SRCS) \
+			$(US_DAEMON_SRCS))
 $(addprefix $(BUILD)/%/obj/,$(US_UNIT_OBJS)): UNIT_CFLAGS += \
 	-I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib -I$(TOP)/$(US_DIR)/tools
 US_WRAPPED := open close ioctl gpiod_chip_open_lookup gpiod_chip_close \
@@ -137,4 +148,5 @@ US_EMPTY :=
 US_COMMA := ,
 $(BUILD)/%/test_userspace_transport: UNIT_LDLIBS += \
 	-Wl$(US_COMMA)$(subst $(US_EMPTY) $(US_EMPTY),$(US_COMMA),$(addprefix --wrap=,$(US_WRAPPED)))
-$(BUILD)/%/test_userspace_lib $(BUILD)/%/test_userspace_ctl: UNIT_LDLIBS += $(US_LDLIBS)
+$(BUILD)/%/test_userspace_text $(BUILD)/%/test_userspace_lib \
+$(BUILD)/%/test_userspace_ctl: UNIT_LDLIBS += $(US_LDLIBS)

@@ -42,6 +42,14 @@ UNIT_SUITES += test_core_filter
 test_core_filter_SRCS := $(UNIT_CORE_SRCS)
 UNIT_SUITES += test_core_bringup
 test_core_bringup_SRCS := $(UNIT_CORE_SRCS)
+UNIT_SUITES += test_userspace_text
+test_userspace_text_SRCS := $(US_UNIT_TEXT_SRCS)
+UNIT_SUITES += test_userspace_transport
+test_userspace_transport_SRCS := $(US_UNIT_TRANSPORT_SRCS)
+UNIT_SUITES += test_userspace_lib
+test_userspace_lib_SRCS := $(US_UNIT_LIB_SRCS)
+UNIT_SUITES += test_userspace_ctl
+test_userspace_ctl_SRCS := $(US_UNIT_CTL_SRCS)
 
 # ---- rules (no need to touch these to add a suite) ------------------------
 UNIT_FLAVOURS := unit unit-asan coverage

@@ -190,6 +190,8 @@ int cli_sample_point(const char *s, uint32_t *out)
 		return -1;
 	else if (v < 1)
 		v *= 1000;
+	else if (strchr(s, '.'))
+		return -1;	/* tenths of a percent are whole numbers */
 	if (v <= 0 || v >= 1000)
 		return -1;
 	*out = (uint32_t)(v + 0.5);

@@ -1,0 +1,333 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * mcp2510ctl through its testable main (arguments in, exit status and
+ * both output streams out) and mcp2510d's bridge over a datagram socket
+ * pair standing in for a CAN_RAW socket.
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <sys/eventfd.h>
+#include <sys/socket.h>
+#include <cmocka.h>
+#include <linux/can/error.h>
+
+#include "bridge.h"
+#include "ctl.h"
+
+struct run {
+	int status;
+	char *out;
+	char *err;
+};
+
+static struct run ctl(const char *first, ...)
+{
+	char *argv[CTL_MAX_ARGS + 2] = { "mcp2510ctl" };
+	struct run r = { 0, NULL, NULL };
+	size_t out_len, err_len;
+	FILE *out, *err;
+	const char *arg;
+	va_list ap;
+	int argc = 1;
+
+	va_start(ap, first);
+	for (arg = first; arg; arg = va_arg(ap, const char *))
+		argv[argc++] = (char *)arg;
+	va_end(ap);
+	out = open_memstream(&r.out, &out_len);
+	err = open_memstream(&r.err, &err_len);
+	r.status = ctl_main(argc, argv, out, err);
+	fclose(out);
+	fclose(err);
+	return r;
+}
+
+static void run_free(struct run *r)
+{
+	free(r->out);
+	free(r->err);
+}
+
+/* Failed with @status and exactly one line "mcp2510ctl: ...@part...". */
+static void assert_one_line_error(struct run r, int status, const char *part)
+{
+	if (r.status != status || strncmp(r.err, "mcp2510ctl: ", 12) ||
+	    !strstr(r.err, part) || strchr(r.err, '\n') != r.err + strlen(r.err) - 1)
+		fail_msg("status %d (want %d), stderr '%s' (want one line with '%s')",
+			 r.status, status, r.err, part);
+	run_free(&r);
+}
+
+static unsigned int lines(const char *s)
+{
+	unsigned int n = 0;
+
+	for (; *s; s++)
+		n += *s == '\n';
+	return n;
+}
+
+static void test_usage_errors(void **state)
+{
+	(void)state;
+	assert_one_line_error(ctl(NULL), EXIT_USAGE, "no command given");
+	assert_one_line_error(ctl("frob", NULL), EXIT_USAGE, "unknown command 'frob'");
+	assert_one_line_error(ctl("--frob", "info", NULL), EXIT_USAGE,
+			      "unknown option --frob");
+	assert_one_line_error(ctl("-x", NULL), EXIT_USAGE, "unknown option -x");
+	assert_one_line_error(ctl("bittiming", "--clock", NULL), EXIT_USAGE,
+			      "--clock needs a value");
+	assert_one_line_error(ctl("bittiming", "--clock", "16Q", NULL), EXIT_USAGE,
+			      "invalid value '16Q' for --clock");
+	assert_one_line_error(ctl("bittiming", "fast", NULL), EXIT_USAGE,
+			      "invalid bit rate 'fast'");
+	assert_one_line_error(ctl("bittiming", "1", "2", NULL), EXIT_USAGE,
+			      "unexpected argument '2'");
+	assert_one_line_error(ctl("--variant", "mcp9", "info", NULL), EXIT_USAGE,
+			      "invalid value 'mcp9' for --variant");
+	assert_one_line_error(ctl("--loopback=1", "info", NULL), EXIT_USAGE,
+			      "takes no value");
+	assert_one_line_error(ctl("info", NULL), EXIT_USAGE, "no --device");
+	assert_one_line_error(ctl("--device", "sim", "send", NULL), EXIT_USAGE,
+			      "missing argument");
+	assert_one_line_error(ctl("--device", "sim", "dump", "--count", "x", NULL),
+			      EXIT_USAGE, "invalid --count 'x'");
+	assert_one_line_error(ctl("--device", "sim", "filter", "rxm0=bogus", NULL),
+			      EXIT_USAGE, "invalid filter setting 'rxm0=bogus'");
+	assert_one_line_error(ctl("--device", "spidev:/dev/spidev0.0", "exchange",
+				  NULL), EXIT_USAGE, "needs --device sim");
+}
+
+static void test_bad_frames_named_verbatim(void **state)
+{
+	(void)state;
+	assert_one_line_error(ctl("--device", "sim", "send", "123#1", NULL),
+			      EXIT_USAGE,
+			      "bad frame '123#1': data must be pairs of hex digits");
+	/* user text is data, never a format */
+	assert_one_line_error(ctl("--device", "sim", "send", "%s%n#", NULL),
+			      EXIT_USAGE, "bad frame '%s%n#'");
+}
+
+static void test_help_texts(void **state)
+{
+	struct run r = ctl("--help", NULL);
+	static const char *const cmds[] = {
+		"info", "reset", "bittiming", "regs", "filter", "state", "send",
+		"dump", "selftest", "exchange", "bench",
+	};
+	size_t i;
+
+	(void)state;
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "Usage: mcp2510ctl"));
+	assert_string_equal(r.err, "");
+	run_free(&r);
+	for (i = 0; i < sizeof(cmds) / sizeof(cmds[0]); i++) {
+		char want[64];
+
+		r = ctl(cmds[i], "--help", NULL);
+		snprintf(want, sizeof(want), "mcp2510ctl ");
+		assert_int_equal(r.status, 0);
+		if (!strstr(r.out, want) || !strstr(r.out, cmds[i]))
+			fail_msg("%s --help: '%s'", cmds[i], r.out);
+		run_free(&r);
+	}
+}
+
+static void test_bittiming_contract(void **state)
+{
+	struct run r = ctl("bittiming", "500000", "--clock", "16000000", NULL);
+
+	(void)state;
+	assert_int_equal(r.status, 0);
+	assert_string_equal(r.out,
+		"bitrate 500000 sample-point 0.875 tq 125 prop-seg 6 phase-seg1 7 phase-seg2 2 sjw 1 brp 1\n"
+		"cnf1 0x00 cnf2 0xb5 cnf3 0x01\n");
+	run_free(&r);
+	r = ctl("--clock", "8M", "bittiming", "125k", "--sample-point", "0.75", NULL);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "bitrate 125000 sample-point 0.750 "));
+	run_free(&r);
+	assert_one_line_error(ctl("bittiming", "1000000", "--clock", "4M", NULL),
+			      EXIT_FAIL, "bit rate 1000000 cannot be made from a 4000000 Hz oscillator");
+}
+
+static void test_chip_commands_on_sim(void **state)
+{
+	struct run r = ctl("--device", "sim", "selftest", NULL);
+
+	(void)state;
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "PASS\n"));
+	run_free(&r);
+	r = ctl("--device", "sim", "exchange", "--count", "2", NULL);
+	assert_int_equal(r.status, 0);
+	assert_int_equal(lines(r.out), 4);
+	assert_non_null(strstr(r.out, ") mcp2510.1 100#00\n"));
+	assert_non_null(strstr(r.out, ") mcp2510.0 201#1011\n"));
+	run_free(&r);
+	r = ctl("--device", "sim", "send", "123#11", "1FFFFFFF#R", NULL);
+	assert_int_equal(r.status, 0);
+	assert_string_equal(r.out, "");
+	run_free(&r);
+	r = ctl("--device", "sim", "regs", NULL);
+	assert_int_equal(r.status, 0);
+	assert_int_equal(lines(r.out), 128);
+	assert_non_null(strstr(r.out, "0x2a CNF1       0x"));
+	run_free(&r);
+	r = ctl("--device", "sim", "filter", "mask0=7ff", "filter0=123x", NULL);
+	assert_int_equal(r.status, 0);
+	assert_int_equal(lines(r.out), MCP2510_HW_FILTER_SETTINGS);
+	assert_non_null(strstr(r.out, "mask0 7ff\nmask1 0\nfilter0 123x\n"));
+	run_free(&r);
+	r = ctl("--device", "sim", "dump", "--count", "1", "--timeout", "5", NULL);
+	assert_int_equal(r.status, 0);
+	assert_string_equal(r.out, "");
+	run_free(&r);
+	r = ctl("--device", "sim", "info", NULL);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "variant mcp2510\n"));
+	assert_non_null(strstr(r.out, "mode configuration\n"));
+	run_free(&r);
+}
+
+static void test_device_failures(void **state)
+{
+	(void)state;
+	assert_one_line_error(ctl("--device", "spidev:/nonexistent/spidev0.0",
+				  "info", NULL), EXIT_FAIL, "cannot open");
+	assert_one_line_error(ctl("--device", "sim:alone", "send", "--timeout", "20",
+				  "123#", NULL), EXIT_FAIL, "not acknowledged");
+}
+
+/* ---- the bridge -------------------------------------------------------- */
+
+struct bridge_rig {
+	struct mcp2510 *chip, *peer;
+	int sv[2];			/* sv[0]: the bridge's, sv[1]: ours */
+	struct bridge b;
+};
+
+static struct mcp2510 *up(const char *bus)
+{
+	struct mcp2510 *h = mcp2510_open(bus, NULL);
+
+	assert_non_null(h);
+	assert_int_equal(mcp2510_set_bitrate(h, 250000, 0), 0);
+	assert_int_equal(mcp2510_up(h), 0);
+	return h;
+}
+
+static int rig_setup(void **state)
+{
+	struct bridge_rig *r = calloc(1, sizeof(*r));
+
+	r->chip = up("sim:bridge");
+	r->peer = up("sim:bridge");
+	assert_int_equal(socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_NONBLOCK, 0,
+				    r->sv), 0);
+	bridge_init(&r->b, r->chip, r->sv[0]);
+	*state = r;
+	return 0;
+}
+
+static int rig_teardown(void **state)
+{
+	struct bridge_rig *r = *state;
+
+	mcp2510_close(r->chip);
+	mcp2510_close(r->peer);
+	close(r->sv[0]);
+	close(r->sv[1]);
+	free(r);
+	return 0;
+}
+
+static void pump(struct bridge_rig *r, unsigned int rounds)
+{
+	while (rounds--)
+		assert_int_equal(bridge_poll(&r->b, -1, 10), 0);
+}
+
+static void test_bridge_socket_to_bus(void **state)
+{
+	struct bridge_rig *r = *state;
+	struct can_frame cf = { .can_id = 0x321, .len = 2, .data = { 7, 8 } };
+	struct can_frame err = { .can_id = CAN_ERR_FLAG | CAN_ERR_BUSERROR,
+				 .len = CAN_ERR_DLC };
+	struct mcp2510_event ev;
+
+	assert_int_equal(write(r->sv[1], &err, sizeof(err)), sizeof(err));
+	assert_int_equal(write(r->sv[1], &cf, sizeof(cf)), sizeof(cf));
+	pump(r, 3);
+	assert_int_equal(r->b.counts.ignored, 1);
+	assert_int_equal(r->b.counts.to_chip, 1);
+	do
+		assert_int_equal(mcp2510_recv(r->peer, &ev, 100), 0);
+	while (ev.type != MCP2510_EVENT_RX);
+	assert_int_equal(ev.frame.can_id, 0x321);
+	assert_memory_equal(ev.frame.data, cf.data, 2);
+}
+
+static void test_bridge_bus_to_socket(void **state)
+{
+	struct bridge_rig *r = *state;
+	struct can_frame cf = { .can_id = 0x1234 | CAN_EFF_FLAG, .len = 1,
+				.data = { 9 } }, got;
+
+	assert_int_equal(mcp2510_send(r->peer, &cf, 0), 0);
+	pump(r, 3);
+	assert_int_equal(read(r->sv[1], &got, sizeof(got)), sizeof(got));
+	assert_int_equal(got.can_id, cf.can_id);
+	assert_int_equal(got.data[0], 9);
+	assert_int_equal(r->b.counts.to_socket, 1);
+	/* what the bridge sent itself does not come back */
+	assert_int_equal(read(r->sv[1], &got, sizeof(got)), -1);
+	assert_int_equal(errno, EAGAIN);
+}
+
+static void test_bridge_stops_and_fails(void **state)
+{
+	struct bridge_rig *r = *state;
+	uint64_t one = 1;
+	int stop = eventfd(0, EFD_CLOEXEC);
+
+	assert_int_equal(bridge_poll(&r->b, stop, 0), 0);
+	assert_int_equal(write(stop, &one, sizeof(one)), sizeof(one));
+	assert_int_equal(bridge_poll(&r->b, stop, 1000), 1);
+	close(stop);
+	/* the interface went away */
+	close(r->sv[1]);
+	r->sv[1] = eventfd(0, EFD_CLOEXEC);
+	assert_int_equal(bridge_poll(&r->b, -1, 100), -1);
+	assert_int_equal(errno, ECONNRESET);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_usage_errors),
+		cmocka_unit_test(test_bad_frames_named_verbatim),
+		cmocka_unit_test(test_help_texts),
+		cmocka_unit_test(test_bittiming_contract),
+		cmocka_unit_test(test_chip_commands_on_sim),
+		cmocka_unit_test(test_device_failures),
+		cmocka_unit_test_setup_teardown(test_bridge_socket_to_bus,
+						rig_setup, rig_teardown),
+		cmocka_unit_test_setup_teardown(test_bridge_bus_to_socket,
+						rig_setup, rig_teardown),
+		cmocka_unit_test_setup_teardown(test_bridge_stops_and_fails,
+						rig_setup, rig_teardown),
+	};
+
+	return cmocka_run_group_tests_name("userspace_ctl", tests, NULL, NULL);
+}
