@@ -18,6 +18,7 @@ static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 		return 0;
 	}
 	if (node->fail_at && node->xfer_count == node->fail_at) {
+		node->failed_instr = tx[0];
 		if (node->fail_reaches_chip)
 			sim_chip_spi(&node->sim, tx, rx, len);
 		return -EREMOTEIO;
@@ -162,6 +163,17 @@ static void ch_service_all(struct ch_rig *rig)
 		ch_service(&rig->node[i], 16, &ret);
 		assert_true(ret >= 0);
 	}
+}
+
+bool ch_step(struct ch_rig *rig)
+{
+	u64 next = sim_bus_next_event(&rig->bus);
+
+	if (next == U64_MAX)
+		return false;
+	sim_bus_advance_to(&rig->bus, next);
+	ch_service_all(rig);
+	return true;
 }
 
 void ch_run(struct ch_rig *rig, u64 ns)

@@ -44,6 +44,7 @@ struct ch_node {
 	u64 xfer_count;
 	u64 fail_at;
 	bool fail_reaches_chip;	/* the failed transfer still happened */
+	u8 failed_instr;	/* first byte of the transfer that failed */
 	/* a broken board: MISO always reads this (-1: a working line) */
 	int miso_stuck;
 	void *test_ctx;
@@ -75,6 +76,8 @@ bool ch_int_asserted(const struct ch_node *node);
  * return the number of calls; the last result in *last_ret.
  */
 unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret);
+/* Advance to the next event and service; false when nothing is pending. */
+bool ch_step(struct ch_rig *rig);
 /* Run the bus for @ns, servicing every node's interrupt after each event. */
 void ch_run(struct ch_rig *rig, u64 ns);
 /* Run until the bus is idle with nothing pending and no INT asserted. */

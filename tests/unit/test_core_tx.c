@@ -1,0 +1,410 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The ordered three-buffer transmit scheduler against simulated chips:
+ * frames leave, arrive and complete in queue order while all three
+ * buffers stay busy (10,000-frame streams with mixed identifiers and
+ * competing traffic), the SPI cost per frame, transport errors leaving
+ * the scheduler consistent, and the MCP2515's LOAD TX BUFFER.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "core_harness.h"
+
+#define MS		1000000ULL
+#define BITRATE		1000000
+#define PHANTOM_ID	0x001	/* beats every stream frame in arbitration */
+
+/* Frame @i of a stream: mixed formats, identifiers, lengths, some RTR. */
+static struct can_frame stream_frame(u32 i, bool full_length)
+{
+	u32 h = i * 2654435761u;
+	u8 len = full_length ? 8 : (h >> 7) % 9;
+	canid_t id;
+
+	if (h & 0x10000)
+		id = CAN_EFF_FLAG | ((h >> 3) & CAN_EFF_MASK);
+	else
+		id = 0x010 + (h >> 5) % (0x7ff - 0x010);
+	if (!full_length && i % 13 == 5)
+		id |= CAN_RTR_FLAG;
+	return ch_frame(id, len, i);
+}
+
+struct stream {
+	u32 total;
+	bool full_length;
+	u32 fail_every;		/* inject a transport error every n attempts */
+	bool fail_reaches_chip;
+	u32 phantom_every;	/* competing frames every n frames */
+	/* progress */
+	u32 submitted, received, done, attempts, failed, failed_raises;
+	u8 fifo[4];		/* slots in submission order */
+	u32 fifo_head, fifo_len;
+	/* SPI cost of submits that succeeded */
+	u64 tx_bytes, tx_transfers, tx_max_bytes;
+	u32 load_tx_buffer_submits;
+	/* bus monitor */
+	u32 frames_on_bus, gaps;
+	u64 last_end_ns;
+};
+
+static struct stream *current;
+
+static void stream_on_rx(struct ch_node *node, const struct can_frame *cf)
+{
+	struct can_frame want;
+
+	(void)node;
+	if (cf->can_id == PHANTOM_ID)
+		return;
+	want = stream_frame(current->received, current->full_length);
+	if (!ch_frame_equal(cf, &want))
+		fail_msg("frame %u arrived as %x/%u, want %x/%u",
+			 current->received, cf->can_id, cf->len, want.can_id,
+			 want.len);
+	current->received++;
+}
+
+static void stream_on_tx_done(struct ch_node *node, unsigned int slot)
+{
+	struct stream *s = current;
+
+	(void)node;
+	assert_true(s->fifo_len > 0);
+	if (s->fifo[s->fifo_head % 4] != slot)
+		fail_msg("tx_done for slot %u, queue head is slot %u", slot,
+			 s->fifo[s->fifo_head % 4]);
+	s->fifo_head++;
+	s->fifo_len--;
+	s->done++;
+}
+
+static void stream_monitor(void *ctx, const struct sim_bus_record *rec)
+{
+	struct stream *s = ctx;
+
+	if (rec->kind != SIM_REC_FRAME)
+		return;
+	if (s->frames_on_bus && rec->start_ns != s->last_end_ns &&
+	    s->submitted > s->done + 1)
+		s->gaps++;
+	s->frames_on_bus++;
+	s->last_end_ns = rec->end_ns;
+}
+
+static void stream_submit_one(struct stream *s, struct ch_node *tx)
+{
+	struct can_frame cf = stream_frame(s->submitted, s->full_length);
+	u32 raises = tx->core.tx.prio_raises;
+	struct ch_spi_mark m;
+	int ret;
+
+	s->attempts++;
+	if (s->fail_every && s->attempts % s->fail_every == 0) {
+		tx->xfer_count = 0;
+		tx->fail_at = 1;
+		tx->fail_reaches_chip = s->fail_reaches_chip;
+	}
+	ch_spi_mark(tx, &m);
+	ret = mcp2510_tx_submit(&tx->core, &cf);
+	m = ch_spi_since(tx, &m);
+	if (tx->fail_at) {
+		tx->fail_at = 0;
+		assert_int_equal(ret, -EIO);
+		s->failed++;
+		if (tx->failed_instr == MCP2510_INSTR_BIT_MODIFY)
+			s->failed_raises++;
+		return;
+	}
+	assert_in_range(ret, 0, 2);
+	/* a submit is one load and one RTS, plus one BIT MODIFY per raise */
+	raises = tx->core.tx.prio_raises - raises;
+	assert_int_equal(m.transfers, 2 + raises);
+	if (cf.len == 8 && !(cf.can_id & CAN_RTR_FLAG))
+		assert_true(m.bytes <= 17 + 4 * raises);
+	if (m.bytes - 4 * raises == 1 + 5 + cf.len + 1u &&
+	    !(cf.can_id & CAN_RTR_FLAG))
+		s->load_tx_buffer_submits++;
+	s->tx_bytes += m.bytes;
+	s->tx_transfers += m.transfers;
+	if (m.bytes > s->tx_max_bytes)
+		s->tx_max_bytes = m.bytes;
+	s->fifo[(s->fifo_head + s->fifo_len) % 4] = ret;
+	s->fifo_len++;
+	s->submitted++;
+}
+
+static void stream_run(struct stream *s, enum mcp2510_model model)
+{
+	struct ch_rig *rig = ch_rig_new(2, model);
+	struct ch_node *tx = &rig->node[0], *rx = &rig->node[1];
+	struct can_frame phantom = ch_frame(PHANTOM_ID, 1, 0);
+	struct ch_spi_mark irq_start;
+	u64 steps = 0;
+
+	current = s;
+	rx->ev.on_rx = stream_on_rx;
+	tx->ev.on_tx_done = stream_on_tx_done;
+	sim_bus_set_monitor(&rig->bus, stream_monitor, s);
+	assert_int_equal(ch_start(tx, BITRATE, 0), 0);
+	assert_int_equal(ch_start(rx, BITRATE, 0), 0);
+
+	ch_spi_mark(tx, &irq_start);
+	while (s->done < s->total) {
+		while (s->submitted < s->total && mcp2510_tx_free(&tx->core)) {
+			stream_submit_one(s, tx);
+			if (s->phantom_every &&
+			    s->submitted % s->phantom_every == 0)
+				sim_phantom_send(&rig->bus, &phantom, 0);
+		}
+		assert_true(ch_step(rig));
+		assert_true(++steps < 100ULL * s->total);
+	}
+	ch_run_idle(rig, 10 * MS);
+
+	assert_int_equal(s->received, s->total);
+	/* the competing frames really went in between */
+	if (s->phantom_every)
+		assert_int_equal(rx->ev.rx_count - s->received,
+				 s->total / s->phantom_every);
+	assert_int_equal(s->done, s->total);
+	assert_int_equal(tx->ev.tx_aborted_count, 0);
+	assert_int_equal(s->gaps, 0);
+	assert_int_equal(mcp2510_tx_free(&tx->core), 3);
+	/* the rest of the node's SPI traffic went on completions */
+	irq_start = ch_spi_since(tx, &irq_start);
+	print_message("%s: %u frames, submit %.2f bytes %.2f transfers/frame "
+		      "(max %llu), %u TXP raises, %u via LOAD TX BUFFER, "
+		      "completion %.2f bytes %.2f transfers/frame, "
+		      "%u injected errors (%u in raises)\n",
+		      mcp2510_variant_get(model)->name, s->total,
+		      (double)s->tx_bytes / s->total,
+		      (double)s->tx_transfers / s->total,
+		      (unsigned long long)s->tx_max_bytes,
+		      tx->core.tx.prio_raises, s->load_tx_buffer_submits,
+		      (double)(irq_start.bytes - s->tx_bytes) / s->total,
+		      (double)(irq_start.transfers - s->tx_transfers) /
+		      s->total, s->failed, s->failed_raises);
+	/* two raises about every nine frames of a continuous stream */
+	assert_true(tx->core.tx.prio_raises <= 2 * (s->total / 9 + 1) +
+		    2 * s->failed);
+	ch_rig_free(rig);
+	current = NULL;
+}
+
+static void test_three_frames_keep_their_order(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2510);
+	struct ch_node *tx = &rig->node[0], *rx = &rig->node[1];
+	/* identifiers that the bus would reorder if all were pending */
+	static const canid_t ids[] = { 0x700, 0x300, 0x100 };
+	struct can_frame extra = ch_frame(0x1, 1, 0);
+	unsigned int i;
+
+	(void)state;
+	assert_int_equal(ch_start(tx, BITRATE, 0), 0);
+	assert_int_equal(ch_start(rx, BITRATE, 0), 0);
+	for (i = 0; i < 3; i++) {
+		struct can_frame cf = ch_frame(ids[i], 8, i);
+
+		assert_true(mcp2510_tx_submit(&tx->core, &cf) >= 0);
+	}
+	assert_int_equal(mcp2510_tx_free(&tx->core), 0);
+	assert_int_equal(mcp2510_tx_submit(&tx->core, &extra), -EBUSY);
+	ch_run_idle(rig, 10 * MS);
+	assert_int_equal(rx->ev.rx_count, 3);
+	for (i = 0; i < 3; i++)
+		assert_int_equal(rx->ev.rx[i].can_id, ids[i]);
+	assert_int_equal(tx->ev.tx_done_count, 3);
+	/* first frame into the top key: buffer 2 at TXP 3, then 1 and 0 */
+	assert_int_equal(tx->ev.tx_done[0], 2);
+	assert_int_equal(tx->ev.tx_done[1], 1);
+	assert_int_equal(tx->ev.tx_done[2], 0);
+	assert_int_equal(mcp2510_tx_free(&tx->core), 3);
+	ch_rig_free(rig);
+}
+
+static void test_stream_mcp2510(void **state)
+{
+	struct stream s = { .total = 10000, .phantom_every = 97 };
+
+	(void)state;
+	stream_run(&s, MCP2510_MODEL_MCP2510);
+}
+
+static void test_stream_mcp2515(void **state)
+{
+	struct stream s = { .total = 10000, .phantom_every = 89 };
+
+	(void)state;
+	stream_run(&s, MCP2510_MODEL_MCP2515);
+}
+
+static void test_spi_cost_per_8_byte_frame(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		struct stream s = { .total = 1000, .full_length = true };
+
+		stream_run(&s, models[i]);
+		/* the 17-byte, 2-transfer submit plus amortised raises */
+		assert_true(s.tx_bytes <= 17ULL * s.total +
+			    4ULL * (2 * (s.total / 9 + 1)));
+		/*
+		 * A busy stream changes every buffer's TXP at each reuse, so
+		 * even the MCP2515 writes TXBnCTRL with the frame (see the
+		 * idle case for LOAD TX BUFFER).
+		 */
+		assert_int_equal(s.load_tx_buffer_submits, 0);
+	}
+}
+
+/* One frame on an idle chip: the exact instruction sequence. */
+static void test_idle_submit_and_completion_cost(void **state)
+{
+	static const struct {
+		enum mcp2510_model model;
+		u64 first, second;
+	} cases[] = {
+		/* WRITE TXBnCTRL..D7 (16) + RTS (1) */
+		{ MCP2510_MODEL_MCP2510, 17, 17 },
+		/* then LOAD TX BUFFER SIDH..D7 (14) + RTS: TXP already right */
+		{ MCP2510_MODEL_MCP2515, 17, 15 },
+	};
+	unsigned int i, k;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(cases); i++) {
+		struct ch_rig *rig = ch_rig_new(2, cases[i].model);
+		struct ch_node *tx = &rig->node[0];
+
+		assert_int_equal(ch_start(tx, BITRATE, 0), 0);
+		assert_int_equal(ch_start(&rig->node[1], BITRATE, 0), 0);
+		for (k = 0; k < 2; k++) {
+			struct can_frame cf = ch_frame(0x123, 8, k);
+			struct ch_spi_mark m;
+
+			ch_spi_mark(tx, &m);
+			assert_int_equal(mcp2510_tx_submit(&tx->core, &cf), 2);
+			m = ch_spi_since(tx, &m);
+			assert_int_equal(m.transfers, 2);
+			assert_int_equal(m.bytes, k ? cases[i].second :
+					 cases[i].first);
+
+			/* completion: READ STATUS, BIT MODIFY CANINTF */
+			sim_bus_advance(&rig->bus, MS);
+			ch_spi_mark(tx, &m);
+			assert_int_equal(ch_service(tx, 4, NULL), 1);
+			m = ch_spi_since(tx, &m);
+			assert_int_equal(m.transfers, 2);
+			assert_int_equal(m.bytes, 6);
+			assert_int_equal(tx->ev.tx_done_count, k + 1);
+			ch_service(&rig->node[1], 4, NULL);
+		}
+		ch_rig_free(rig);
+	}
+}
+
+static void test_stream_with_transport_errors(void **state)
+{
+	static const struct {
+		enum mcp2510_model model;
+		bool reaches_chip;
+	} cases[] = {
+		{ MCP2510_MODEL_MCP2510, false },
+		{ MCP2510_MODEL_MCP2510, true },
+		{ MCP2510_MODEL_MCP2515, false },
+		{ MCP2510_MODEL_MCP2515, true },
+	};
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(cases); i++) {
+		struct stream s = {
+			.total = 600, .fail_every = 7,
+			.fail_reaches_chip = cases[i].reaches_chip,
+		};
+
+		stream_run(&s, cases[i].model);
+		assert_true(s.failed >= 600 / 7);
+		assert_true(s.failed_raises > 0);
+	}
+}
+
+/* A load that fails leaves the slot free; an RTS that fails sends nothing. */
+static void test_failed_submit_sends_nothing(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2510);
+	struct ch_node *tx = &rig->node[0], *rx = &rig->node[1];
+	struct can_frame lost = ch_frame(0x111, 8, 1);
+	struct can_frame sent = ch_frame(0x222, 8, 2);
+	unsigned int fail;
+
+	(void)state;
+	assert_int_equal(ch_start(tx, BITRATE, 0), 0);
+	assert_int_equal(ch_start(rx, BITRATE, 0), 0);
+	for (fail = 1; fail <= 2; fail++) {
+		tx->xfer_count = 0;
+		tx->fail_at = fail;	/* 1: the load, 2: the RTS */
+		tx->fail_reaches_chip = false;
+		assert_int_equal(mcp2510_tx_submit(&tx->core, &lost), -EIO);
+		tx->fail_at = 0;
+		assert_int_equal(mcp2510_tx_free(&tx->core), 3);
+		ch_run_idle(rig, 5 * MS);
+		assert_int_equal(rx->ev.rx_count, 0);
+		assert_int_equal(tx->ev.tx_done_count, 0);
+	}
+	assert_true(mcp2510_tx_submit(&tx->core, &sent) >= 0);
+	ch_run_idle(rig, 5 * MS);
+	assert_int_equal(rx->ev.rx_count, 1);
+	assert_true(ch_frame_equal(&rx->ev.rx[0], &sent));
+	assert_int_equal(tx->ev.tx_done_count, 1);
+	ch_rig_free(rig);
+}
+
+static void test_restart_drops_queued_frames(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct ch_node *tx = &rig->node[0];
+	struct can_frame cf = ch_frame(0x100, 8, 0);
+
+	(void)state;
+	assert_int_equal(ch_start(tx, BITRATE, 0), 0);
+	assert_true(mcp2510_tx_submit(&tx->core, &cf) >= 0);
+	assert_true(mcp2510_tx_submit(&tx->core, &cf) >= 0);
+	ch_run(rig, MS);	/* no ACK: they stay pending */
+	assert_int_equal(mcp2510_restart(&tx->core), 0);
+	assert_int_equal(tx->ev.tx_aborted_count, 2);
+	assert_int_equal(mcp2510_tx_free(&tx->core), 3);
+	assert_int_equal(tx->core.counters.restarts, 1);
+	/* the chip forgot them too */
+	assert_false(sim_chip_peek(&tx->sim, MCP2510_REG_TXBCTRL(2)) &
+		     MCP2510_TXBCTRL_TXREQ);
+	ch_rig_free(rig);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_three_frames_keep_their_order),
+		cmocka_unit_test(test_idle_submit_and_completion_cost),
+		cmocka_unit_test(test_stream_mcp2510),
+		cmocka_unit_test(test_stream_mcp2515),
+		cmocka_unit_test(test_spi_cost_per_8_byte_frame),
+		cmocka_unit_test(test_stream_with_transport_errors),
+		cmocka_unit_test(test_failed_submit_sends_nothing),
+		cmocka_unit_test(test_restart_drops_queued_frames),
+	};
+
+	return cmocka_run_group_tests_name("core_tx", tests, NULL, NULL);
+}
