@@ -154,6 +154,24 @@ static int force_driver(struct spi_device *spi, const char *driver)
 #endif
 }
 
+/*
+ * Since 6.12 a device may use several chip selects (SPI_CS_CNT_MAX); the
+ * unused entries must hold the core's "no chip select" value 0xff, which
+ * spi_new_device() sets but spi_alloc_device() does not, or the core takes
+ * them for a second use of chip select 0.
+ */
+static void set_chip_select(struct spi_device *spi, u8 cs)
+{
+#ifdef SPI_CS_CNT_MAX
+	u8 idx;
+
+	for (idx = 1; idx < SPI_CS_CNT_MAX; idx++)
+		spi_set_chipselect(spi, idx, 0xff);
+	spi->cs_index_mask = BIT(0);
+#endif
+	spi_set_chipselect(spi, 0, cs);
+}
+
 static int add_chip_device(struct mcp2510_sim_chip *chip, const char *driver)
 {
 	struct mcp2510_sim *sim = chip->sim;
@@ -168,7 +186,7 @@ static int add_chip_device(struct mcp2510_sim_chip *chip, const char *driver)
 	spi = spi_alloc_device(sim->ctlr);
 	if (!spi)
 		return -ENOMEM;
-	spi_set_chipselect(spi, 0, chip->index);
+	set_chip_select(spi, chip->index);
 	spi->max_speed_hz = sim->sck_max_hz;
 	spi->mode = SPI_MODE_0;
 	spi->irq = irq;
