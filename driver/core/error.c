@@ -10,7 +10,7 @@
 #define EFLG_WARNING	(MCP2510_EFLG_TXWAR | MCP2510_EFLG_RXWAR | \
 			 MCP2510_EFLG_EWARN)
 
-static enum can_state eflg_state(u8 eflg)
+enum can_state mcp2510_error_eflg_state(u8 eflg)
 {
 	if (eflg & MCP2510_EFLG_TXBO)
 		return CAN_STATE_BUS_OFF;
@@ -73,7 +73,7 @@ static void count_state(struct mcp2510_chip *chip, enum can_state state)
 void mcp2510_error_state_update(struct mcp2510_chip *chip, u8 eflg,
 				const struct can_berr_counter *bec)
 {
-	enum can_state state = eflg_state(eflg);
+	enum can_state state = mcp2510_error_eflg_state(eflg);
 	struct can_frame cf;
 
 	chip->bec = *bec;

@@ -95,13 +95,17 @@ static int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 	return err;
 }
 
-/* Returns the CANINTF bits the caller still has to clear. */
-static int handle_rx(struct mcp2510_chip *chip, u8 intf)
+/*
+ * Read the flagged RX buffers, oldest first, into @frames; returns how
+ * many.  Delivery waits until their flags are cleared: should the clear
+ * fail, the next pass reads them again instead of delivering them twice.
+ */
+static int rx_read(struct mcp2510_chip *chip, u8 intf,
+		   struct can_frame frames[MCP2510_RXB_COUNT])
 {
 	u8 regs[MCP2510_FRAME_REGS];
-	struct can_frame cf;
 	unsigned int n;
-	int err;
+	int count = 0, err;
 
 	if ((intf & MCP2510_INT_RX_ALL) == MCP2510_INT_RX_ALL)
 		chip->irq.full_read_next = true;
@@ -111,11 +115,14 @@ static int handle_rx(struct mcp2510_chip *chip, u8 intf)
 		err = mcp2510_rxb_read(chip, n, regs);
 		if (err)
 			return err;
-		mcp2510_frame_decode(regs, &cf);
-		if (chip->events->rx)
-			chip->events->rx(chip->ctx, &cf);
+		mcp2510_frame_decode(regs, &frames[count++]);
 	}
-	/* READ RX BUFFER cleared RXnIF itself */
+	return count;
+}
+
+/* RXnIF to clear by hand: READ RX BUFFER clears its own. */
+static u8 rx_clear_mask(const struct mcp2510_chip *chip, u8 intf)
+{
 	return chip->variant->has_buffer_instrs ? 0 : intf & MCP2510_INT_RX_ALL;
 }
 
@@ -146,21 +153,29 @@ static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 	return clear;
 }
 
+/*
+ * ERRIF reports a worse error state or an overflow; a better state (after
+ * bus-off recovery, or as the counters fall) raises no flag, so while the
+ * chip is not error-active every full read compares EFLG with the state.
+ */
 static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
 {
+	bool state_due = f->full &&
+			 (f->intf & MCP2510_INT_ERR ||
+			  mcp2510_error_eflg_state(f->eflg) != chip->state);
 	struct can_berr_counter bec;
 	u8 ovr = 0;
 	int err;
 
-	if (!(f->intf & (MCP2510_INT_ERR | MCP2510_INT_MERR)))
+	if (!state_due && !(f->intf & MCP2510_INT_MERR))
 		return 0;
 	err = mcp2510_berr_counter(chip, &bec);
 	if (err)
 		return err;
-	if (f->intf & MCP2510_INT_ERR) {
+	if (state_due)
 		mcp2510_error_state_update(chip, f->eflg, &bec);
+	if (f->intf & MCP2510_INT_ERR)
 		ovr = mcp2510_error_overflow(chip, f->eflg, &bec);
-	}
 	if (f->intf & MCP2510_INT_MERR)
 		mcp2510_error_bus(chip, &bec);
 	/* EFLG first: ERRIF must not be cleared while RXnOVR still stands */
@@ -181,30 +196,32 @@ static int flags_count(u8 flags)
 /* One pass; returns the number of flags handled, 0 when none were set. */
 static int irq_pass(struct mcp2510_chip *chip)
 {
+	struct can_frame frames[MCP2510_RXB_COUNT];
 	struct irq_flags f;
-	int clear, err;
+	int nframes, i, err;
+	u8 clear;
 
 	chip->counters.irq_loops++;
 	err = flags_read(chip, &f);
 	if (err)
 		return err;
-	if (!f.intf)
-		return 0;
-
-	clear = handle_rx(chip, f.intf);
-	if (clear < 0)
-		return clear;
-	clear |= handle_tx(chip, &f);
+	nframes = rx_read(chip, f.intf, frames);
+	if (nframes < 0)
+		return nframes;
 	err = handle_errors(chip, &f);
 	if (err)
 		return err;
-	clear |= f.intf & (MCP2510_INT_ERR | MCP2510_INT_MERR |
-			   MCP2510_INT_WAK);
+	clear = rx_clear_mask(chip, f.intf) | handle_tx(chip, &f) |
+		(f.intf & (MCP2510_INT_ERR | MCP2510_INT_MERR |
+			   MCP2510_INT_WAK));
 	if (clear) {
 		err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, clear, 0);
 		if (err)
 			return err;
 	}
+	for (i = 0; i < nframes; i++)
+		if (chip->events->rx)
+			chip->events->rx(chip->ctx, &frames[i]);
 	return flags_count(f.intf);
 }
 

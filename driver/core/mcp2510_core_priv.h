@@ -30,6 +30,7 @@ void mcp2510_tx_lost(struct mcp2510_chip *chip, u8 slots);
 void mcp2510_tx_abort_all(struct mcp2510_chip *chip);
 
 /* error.c */
+enum can_state mcp2510_error_eflg_state(u8 eflg);
 /* Follow EFLG/TEC/REC into chip->state, raising state and error events. */
 void mcp2510_error_state_update(struct mcp2510_chip *chip, u8 eflg,
 				const struct can_berr_counter *bec);

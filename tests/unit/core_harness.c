@@ -24,6 +24,8 @@ static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 		return -EREMOTEIO;
 	}
 	sim_chip_spi(&node->sim, tx, rx, len);
+	if (node->after_xfer)
+		node->after_xfer(node);
 	return 0;
 }
 

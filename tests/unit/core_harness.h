@@ -45,6 +45,8 @@ struct ch_node {
 	u64 fail_at;
 	bool fail_reaches_chip;	/* the failed transfer still happened */
 	u8 failed_instr;	/* first byte of the transfer that failed */
+	/* called after every transfer that reached the chip */
+	void (*after_xfer)(struct ch_node *node);
 	/* a broken board: MISO always reads this (-1: a working line) */
 	int miso_stuck;
 	void *test_ctx;

@@ -1,0 +1,357 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The interrupt loop against simulated chips: received frames in arrival
+ * order, the SPI cost per received frame on the MCP2510 and the MCP2515,
+ * overflow, error flags that READ STATUS cannot show under an RX flood,
+ * level versus edge-triggered handling, the storm bound, and transport
+ * errors that must neither lose nor duplicate a frame.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "core_harness.h"
+
+#define MS		1000000ULL
+#define BITRATE		1000000
+#define FRAME_NS	200000ULL	/* more than any frame at 1 Mbit/s */
+
+static struct ch_rig *rx_rig(enum mcp2510_model model, bool rollover)
+{
+	struct ch_rig *rig = ch_rig_new(1, model);
+	struct mcp2510_filters f;
+
+	mcp2510_filters_default(&f);
+	f.rollover = rollover;
+	assert_int_equal(mcp2510_filters_apply(&rig->node[0].core, &f), 0);
+	assert_int_equal(ch_start(&rig->node[0], BITRATE, 0), 0);
+	sim_phantom_attach(&rig->bus, 0);
+	return rig;
+}
+
+/* Let the phantom send @n frames while nobody services the chip. */
+static void arrive_unserviced(struct ch_rig *rig, canid_t first_id,
+			      unsigned int n)
+{
+	unsigned int i;
+
+	for (i = 0; i < n; i++) {
+		struct can_frame cf = ch_frame(first_id + i, 8, i);
+
+		assert_int_equal(sim_phantom_send(&rig->bus, &cf, 0), 0);
+	}
+	sim_bus_advance(&rig->bus, n * FRAME_NS);
+}
+
+static void set_errif(struct ch_node *node)
+{
+	const u8 tx[4] = { MCP2510_INSTR_BIT_MODIFY, MCP2510_REG_CANINTF,
+			   MCP2510_INT_ERR, MCP2510_INT_ERR };
+
+	sim_chip_spi(&node->sim, tx, NULL, sizeof(tx));
+}
+
+struct flood_check {
+	u32 received;
+	struct can_frame tmpl;
+};
+
+static struct flood_check *flood;
+
+/* frame k of a flood: the template with its first 4 bytes + k */
+static void flood_on_rx(struct ch_node *node, const struct can_frame *cf)
+{
+	struct can_frame want = flood->tmpl;
+	u32 v = 0;
+	unsigned int i;
+
+	(void)node;
+	for (i = 0; i < 4; i++)
+		v |= (u32)want.data[i] << (8 * i);
+	v += flood->received;
+	for (i = 0; i < 4; i++)
+		want.data[i] = v >> (8 * i);
+	if (!ch_frame_equal(cf, &want))
+		fail_msg("flood frame %u wrong", flood->received);
+	flood->received++;
+}
+
+static void rx_cost(enum mcp2510_model model, u64 max_bytes_x100,
+		    u64 max_transfers_x100)
+{
+	struct ch_rig *rig = rx_rig(model, true);
+	struct ch_node *node = &rig->node[0];
+	struct flood_check fc = { .tmpl = ch_frame(0x321, 8, 0) };
+	const u32 n = 1000;
+	struct ch_spi_mark m;
+
+	flood = &fc;
+	node->ev.on_rx = flood_on_rx;
+	ch_spi_mark(node, &m);
+	assert_int_equal(sim_phantom_flood(&rig->bus, &fc.tmpl, n, 0), 0);
+	ch_run_idle(rig, 1000 * MS);
+	m = ch_spi_since(node, &m);
+	assert_int_equal(fc.received, n);
+	assert_int_equal(sim_chip_counters(&node->sim)->overflows, 0);
+	print_message("%s: RX 8-byte frame: %.2f SPI bytes, %.2f transfers\n",
+		      mcp2510_variant_get(model)->name, (double)m.bytes / n,
+		      (double)m.transfers / n);
+	assert_true(m.bytes * 100 <= max_bytes_x100 * n);
+	assert_true(m.transfers * 100 <= max_transfers_x100 * n);
+	flood = NULL;
+	ch_rig_free(rig);
+}
+
+/* READ STATUS 2 + READ RXB 15 + BIT MODIFY 4, CANINTF now and then */
+static void test_rx_cost_mcp2510(void **state)
+{
+	(void)state;
+	rx_cost(MCP2510_MODEL_MCP2510, 2200, 300);
+}
+
+/* READ STATUS 2 + READ RX BUFFER 14 (clears RXnIF itself) */
+static void test_rx_cost_mcp2515(void **state)
+{
+	(void)state;
+	rx_cost(MCP2510_MODEL_MCP2515, 1650, 200);
+}
+
+static void test_both_buffers_oldest_first(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		struct ch_rig *rig = rx_rig(models[i], true);
+		struct ch_node *node = &rig->node[0];
+		int ret;
+
+		arrive_unserviced(rig, 0x100, 2);
+		/* level-triggered: one pass takes both */
+		assert_int_equal(ch_service(node, 1, &ret), 1);
+		assert_true(ret >= 2);
+		assert_int_equal(node->ev.rx_count, 2);
+		assert_int_equal(node->ev.rx[0].can_id, 0x100);
+		assert_int_equal(node->ev.rx[1].can_id, 0x101);
+		ch_service(node, 4, NULL);
+		assert_false(ch_int_asserted(node));
+		assert_int_equal(node->ev.error_count, 0);
+		ch_rig_free(rig);
+	}
+}
+
+static void test_overflow_is_reported(void **state)
+{
+	static const struct {
+		bool rollover;
+		unsigned int frames, delivered;
+		u8 ovr;
+	} cases[] = {
+		{ true, 3, 2, MCP2510_EFLG_RX1OVR },
+		{ false, 2, 1, MCP2510_EFLG_RX0OVR },
+	};
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(cases); i++) {
+		struct ch_rig *rig = rx_rig(MCP2510_MODEL_MCP2510,
+					    cases[i].rollover);
+		struct ch_node *node = &rig->node[0];
+		const struct can_frame *err;
+
+		arrive_unserviced(rig, 0x200, cases[i].frames);
+		assert_true(sim_chip_peek(&node->sim, MCP2510_REG_EFLG) &
+			    cases[i].ovr);
+		ch_service(node, 8, NULL);
+		assert_false(ch_int_asserted(node));
+		assert_int_equal(node->ev.rx_count, cases[i].delivered);
+		assert_int_equal(node->ev.rx[0].can_id, 0x200);
+		assert_int_equal(node->core.counters.rx_overflows, 1);
+		assert_int_equal(node->ev.error_count, 1);
+		err = &node->ev.error[0];
+		assert_int_equal(err->can_id,
+				 CAN_ERR_FLAG | CAN_ERR_CRTL | CAN_ERR_CNT);
+		assert_int_equal(err->len, CAN_ERR_DLC);
+		assert_int_equal(err->data[1], CAN_ERR_CRTL_RX_OVERFLOW);
+		/* RXnOVR cleared, so the next overflow shows again */
+		assert_false(sim_chip_peek(&node->sim, MCP2510_REG_EFLG) &
+			     (MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR));
+		ch_rig_free(rig);
+	}
+}
+
+/*
+ * READ STATUS shows no ERRIF.  A host too slow for a flood finds a new
+ * frame every time it looks; the periodic CANINTF read must still find
+ * the error flag within a few frames.
+ */
+static void test_error_flags_not_starved_by_rx(void **state)
+{
+	struct ch_rig *rig = rx_rig(MCP2510_MODEL_MCP2510, true);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x300, 8, 0);
+	unsigned int passes = 0;
+
+	(void)state;
+	assert_int_equal(sim_phantom_flood(&rig->bus, &cf, 100, 0), 0);
+	ch_run(rig, 20 * FRAME_NS);
+	set_errif(node);
+	while (sim_chip_peek(&node->sim, MCP2510_REG_CANINTF) &
+	       MCP2510_INT_ERR) {
+		/* look only when a frame waits: READ STATUS always shows RX */
+		sim_bus_advance_to(&rig->bus, sim_bus_next_event(&rig->bus));
+		if (!(sim_chip_peek(&node->sim, MCP2510_REG_CANINTF) &
+		      MCP2510_INT_RX_ALL))
+			continue;
+		assert_true(mcp2510_irq_handle(&node->core) > 0);
+		assert_true(++passes <= MCP2510_IRQ_FULL_READ_EVERY);
+	}
+	assert_true(sim_phantom_pending(&rig->bus) > 0);
+	ch_run_idle(rig, 100 * MS);
+	assert_int_equal(node->ev.rx_count, 100);
+	ch_rig_free(rig);
+}
+
+/* Two frames, a sent frame and an ERRIF waiting at once. */
+static struct ch_rig *busy_chip(bool edge)
+{
+	struct ch_rig *rig = rx_rig(MCP2510_MODEL_MCP2510, true);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x7f0, 2, 0);
+
+	node->core.irq_edge = edge;
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	sim_bus_advance(&rig->bus, FRAME_NS);
+	arrive_unserviced(rig, 0x400, 2);
+	set_errif(node);
+	return rig;
+}
+
+static void test_level_triggered_one_pass(void **state)
+{
+	struct ch_rig *rig = busy_chip(false);
+	struct ch_node *node = &rig->node[0];
+	u32 loops = node->core.counters.irq_loops;
+
+	(void)state;
+	assert_int_equal(mcp2510_irq_handle(&node->core), 3);
+	assert_int_equal(node->core.counters.irq_loops - loops, 1);
+	assert_int_equal(node->ev.rx_count, 2);
+	assert_int_equal(node->ev.tx_done_count, 1);
+	/* ERRIF is left for the next interrupt: the line stays low */
+	assert_true(ch_int_asserted(node));
+	assert_int_equal(mcp2510_irq_handle(&node->core), 1);
+	assert_false(ch_int_asserted(node));
+	ch_rig_free(rig);
+}
+
+static void test_edge_triggered_loops_until_clear(void **state)
+{
+	struct ch_rig *rig = busy_chip(true);
+	struct ch_node *node = &rig->node[0];
+
+	(void)state;
+	assert_int_equal(mcp2510_irq_handle(&node->core), 4);
+	assert_false(ch_int_asserted(node));
+	assert_int_equal(node->ev.rx_count, 2);
+	assert_int_equal(node->ev.tx_done_count, 1);
+	assert_int_equal(node->core.counters.irq_storms, 0);
+	ch_rig_free(rig);
+}
+
+static void test_storm_is_bounded(void **state)
+{
+	struct ch_rig *rig = rx_rig(MCP2510_MODEL_MCP2510, true);
+	struct ch_node *node = &rig->node[0];
+	u32 loops = node->core.counters.irq_loops;
+
+	(void)state;
+	/* a chip that raises ERRIF again as soon as it is cleared */
+	node->after_xfer = set_errif;
+	set_errif(node);
+	assert_int_equal(mcp2510_irq_handle(&node->core), 1);
+	assert_int_equal(node->core.counters.irq_storms, 0);
+
+	node->core.irq_edge = true;
+	loops = node->core.counters.irq_loops;
+	assert_int_equal(mcp2510_irq_handle(&node->core), -EAGAIN);
+	assert_int_equal(node->core.counters.irq_storms, 1);
+	assert_int_equal(node->core.counters.irq_loops - loops,
+			 MCP2510_IRQ_MAX_PASSES);
+
+	node->after_xfer = NULL;
+	assert_int_equal(mcp2510_irq_handle(&node->core), 1);
+	assert_false(ch_int_asserted(node));
+	ch_rig_free(rig);
+}
+
+/* Fail each transfer of the pass in turn: the frame comes exactly once. */
+static void test_transport_error_keeps_the_frame(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	unsigned int i, fail;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		unsigned int transfers = models[i] == MCP2510_MODEL_MCP2510 ?
+					 3 : 2;
+
+		for (fail = 1; fail <= transfers; fail++) {
+			struct ch_rig *rig = rx_rig(models[i], true);
+			struct ch_node *node = &rig->node[0];
+
+			arrive_unserviced(rig, 0x500, 1);
+			node->xfer_count = 0;
+			node->fail_at = fail;
+			assert_int_equal(mcp2510_irq_handle(&node->core), -EIO);
+			assert_int_equal(node->ev.rx_count, 0);
+			node->fail_at = 0;
+			ch_service(node, 4, NULL);
+			assert_int_equal(node->ev.rx_count, 1);
+			assert_int_equal(node->ev.rx[0].can_id, 0x500);
+			assert_false(ch_int_asserted(node));
+			ch_rig_free(rig);
+		}
+	}
+}
+
+static void test_mcp2515_rx_status(void **state)
+{
+	struct ch_rig *rig = rx_rig(MCP2510_MODEL_MCP2515, true);
+	struct ch_node *node = &rig->node[0];
+	u8 status = 0;
+
+	(void)state;
+	arrive_unserviced(rig, 0x600, 1);
+	assert_int_equal(mcp2510_rx_status(&node->core, &status), 0);
+	assert_int_equal(status & MCP2515_RXSTATUS_RXB_MASK,
+			 MCP2515_RXSTATUS_RXB0);
+	assert_int_equal(FIELD_GET(MCP2515_RXSTATUS_TYPE_MASK, status),
+			 MCP2515_RXSTATUS_TYPE_STD);
+	ch_rig_free(rig);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_rx_cost_mcp2510),
+		cmocka_unit_test(test_rx_cost_mcp2515),
+		cmocka_unit_test(test_both_buffers_oldest_first),
+		cmocka_unit_test(test_overflow_is_reported),
+		cmocka_unit_test(test_error_flags_not_starved_by_rx),
+		cmocka_unit_test(test_level_triggered_one_pass),
+		cmocka_unit_test(test_edge_triggered_loops_until_clear),
+		cmocka_unit_test(test_storm_is_bounded),
+		cmocka_unit_test(test_transport_error_keeps_the_frame),
+		cmocka_unit_test(test_mcp2515_rx_status),
+	};
+
+	return cmocka_run_group_tests_name("core_irq", tests, NULL, NULL);
+}
