@@ -1,0 +1,251 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Fault confinement as the core reports it, on a simulated bus: warning
+ * and passive for a node nobody acknowledges, bus-off under bus errors
+ * and the way back (the chip's own recovery and mcp2510_restart()), bus
+ * error reporting, the error counters, and one-shot failures.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "core_harness.h"
+
+#define MS		1000000ULL
+#define BITRATE		500000
+
+static const struct can_frame *find_error(const struct ch_node *node,
+					  canid_t class)
+{
+	unsigned int i, n = node->ev.error_count;
+
+	for (i = 0; i < n && i < CH_LOG_MAX; i++)
+		if (node->ev.error[i].can_id & class)
+			return &node->ev.error[i];
+	return NULL;
+}
+
+/* Every error frame carries TEC/REC and its class. */
+static void assert_error_frames_well_formed(const struct ch_node *node)
+{
+	unsigned int i;
+
+	for (i = 0; i < node->ev.error_count && i < CH_LOG_MAX; i++) {
+		const struct can_frame *cf = &node->ev.error[i];
+
+		assert_true(cf->can_id & CAN_ERR_FLAG);
+		assert_true(cf->can_id & CAN_ERR_CNT);
+		assert_int_equal(cf->len, CAN_ERR_DLC);
+	}
+}
+
+/* A lone sender: ACK errors take it to error-passive, never to bus-off. */
+static void test_lone_node_goes_passive(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x123, 4, 0);
+	const struct can_frame *warn, *passive;
+
+	(void)state;
+	assert_int_equal(ch_start(node, BITRATE, 0), 0);
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	ch_run(rig, 50 * MS);
+
+	assert_int_equal(node->ev.state_count, 2);
+	assert_int_equal(node->ev.state[0], CAN_STATE_ERROR_WARNING);
+	assert_int_equal(node->ev.state[1], CAN_STATE_ERROR_PASSIVE);
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_PASSIVE);
+	assert_int_equal(node->core.counters.warnings, 1);
+	assert_int_equal(node->core.counters.passives, 1);
+	assert_int_equal(node->core.counters.bus_offs, 0);
+
+	warn = find_error(node, CAN_ERR_CRTL);
+	assert_non_null(warn);
+	assert_int_equal(warn->data[1], CAN_ERR_CRTL_TX_WARNING);
+	assert_in_range(warn->data[6], 96, 127);
+	passive = &node->ev.error[1];
+	assert_int_equal(passive->data[1], CAN_ERR_CRTL_TX_PASSIVE);
+	assert_true(passive->data[6] >= 128);
+	assert_int_equal(passive->data[7], 0);
+	assert_error_frames_well_formed(node);
+
+	/* the frame is still queued, nothing was reported sent */
+	assert_int_equal(node->ev.tx_done_count, 0);
+	assert_int_equal(mcp2510_tx_free(&node->core), 2);
+	ch_rig_free(rig);
+}
+
+static struct ch_rig *bus_off_rig(u32 bus_errors, u32 ctrlmode)
+{
+	struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2510);
+	struct can_frame cf = ch_frame(0x456, 8, 0);
+
+	assert_int_equal(ch_start(&rig->node[0], BITRATE, ctrlmode), 0);
+	assert_int_equal(ch_start(&rig->node[1], BITRATE, 0), 0);
+	sim_bus_faults(&rig->bus)->bus_errors = bus_errors;
+	assert_true(mcp2510_tx_submit(&rig->node[0].core, &cf) >= 0);
+	return rig;
+}
+
+/* 32 destroyed attempts (TEC += 8 each) put the sender off the bus. */
+static void run_to_bus_off(struct ch_rig *rig)
+{
+	struct ch_node *node = &rig->node[0];
+	unsigned int steps = 0;
+
+	while (node->core.state != CAN_STATE_BUS_OFF) {
+		assert_true(ch_step(rig));
+		assert_true(++steps < 10000);
+	}
+	assert_true(sim_chip_bus_off(&node->sim));
+	assert_int_equal(node->ev.state_count, 3);
+	assert_int_equal(node->ev.state[0], CAN_STATE_ERROR_WARNING);
+	assert_int_equal(node->ev.state[1], CAN_STATE_ERROR_PASSIVE);
+	assert_int_equal(node->ev.state[2], CAN_STATE_BUS_OFF);
+	assert_int_equal(node->core.counters.bus_offs, 1);
+	assert_int_equal(node->ev.error[node->ev.error_count - 1].can_id,
+			 CAN_ERR_FLAG | CAN_ERR_BUSOFF | CAN_ERR_CNT);
+	assert_error_frames_well_formed(node);
+}
+
+static void test_bus_off_and_the_chips_own_recovery(void **state)
+{
+	struct ch_rig *rig = bus_off_rig(32, 0);
+	struct ch_node *node = &rig->node[0];
+	const struct can_frame *last;
+
+	(void)state;
+	run_to_bus_off(rig);
+	assert_int_equal(node->ev.tx_done_count, 0);
+
+	/* 128 x 11 recessive bits later the chip is back and sends */
+	ch_run_idle(rig, 100 * MS);
+	assert_false(sim_chip_bus_off(&node->sim));
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_ACTIVE);
+	assert_int_equal(node->ev.state[node->ev.state_count - 1],
+			 CAN_STATE_ERROR_ACTIVE);
+	last = &node->ev.error[node->ev.error_count - 1];
+	assert_int_equal(last->can_id, CAN_ERR_FLAG | CAN_ERR_CRTL |
+			 CAN_ERR_CNT);
+	assert_int_equal(last->data[1], CAN_ERR_CRTL_ACTIVE);
+	assert_int_equal(node->ev.tx_done_count, 1);
+	assert_int_equal(rig->node[1].ev.rx_count, 1);
+	assert_int_equal(node->core.counters.restarts, 0);
+	ch_rig_free(rig);
+}
+
+static void test_restart_from_bus_off(void **state)
+{
+	struct ch_rig *rig = bus_off_rig(1000, 0);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x111, 1, 0);
+	unsigned int states;
+
+	(void)state;
+	run_to_bus_off(rig);
+	states = node->ev.state_count;
+	assert_int_equal(mcp2510_restart(&node->core), 0);
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_ACTIVE);
+	assert_int_equal(node->ev.state_count, states + 1);
+	assert_int_equal(node->ev.state[states], CAN_STATE_ERROR_ACTIVE);
+	assert_false(sim_chip_bus_off(&node->sim));
+	assert_int_equal(sim_chip_tec(&node->sim), 0);
+	assert_int_equal(node->ev.tx_aborted_count, 1);
+	assert_int_equal(node->core.counters.restarts, 1);
+	assert_int_equal(sim_chip_opmode(&node->sim), MCP2510_MODE_NORMAL);
+
+	/* the bus works again */
+	sim_bus_faults(&rig->bus)->bus_errors = 0;
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	ch_run_idle(rig, 10 * MS);
+	assert_int_equal(node->ev.tx_done_count, 1);
+	assert_int_equal(rig->node[1].ev.rx_count, 1);
+	ch_rig_free(rig);
+}
+
+static void test_bus_error_reporting(void **state)
+{
+	static const u32 modes[] = { 0, CAN_CTRLMODE_BERR_REPORTING };
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(modes); i++) {
+		struct ch_rig *rig = bus_off_rig(3, modes[i]);
+		struct ch_node *node = &rig->node[0];
+		const struct can_frame *berr;
+
+		ch_run_idle(rig, 50 * MS);
+		assert_int_equal(node->ev.tx_done_count, 1);
+		berr = find_error(node, CAN_ERR_BUSERROR);
+		if (!modes[i]) {
+			assert_null(berr);
+			assert_int_equal(node->core.counters.bus_errors, 0);
+		} else {
+			assert_non_null(berr);
+			assert_int_equal(berr->can_id,
+					 CAN_ERR_FLAG | CAN_ERR_PROT |
+					 CAN_ERR_BUSERROR | CAN_ERR_CNT);
+			assert_true(node->core.counters.bus_errors >= 1);
+			assert_true(node->core.counters.bus_errors <= 3);
+			assert_error_frames_well_formed(node);
+		}
+		ch_rig_free(rig);
+	}
+}
+
+static void test_error_counters(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x123, 4, 0);
+	struct can_berr_counter bec;
+
+	(void)state;
+	assert_int_equal(ch_start(node, BITRATE, 0), 0);
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	ch_run(rig, 1 * MS);
+	assert_int_equal(mcp2510_berr_counter(&node->core, &bec), 0);
+	assert_true(bec.txerr > 0);
+	assert_int_equal(bec.txerr, sim_chip_tec(&node->sim));
+	assert_int_equal(bec.rxerr, sim_chip_rec(&node->sim));
+	node->xfer_count = 0;
+	node->fail_at = 1;
+	assert_int_equal(mcp2510_berr_counter(&node->core, &bec), -EIO);
+	ch_rig_free(rig);
+}
+
+/* MCP2515 one-shot: a failed frame is dropped by the chip and reported. */
+static void test_one_shot_failure_is_reported(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2515);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x321, 2, 0);
+
+	(void)state;
+	assert_int_equal(ch_start(node, BITRATE, CAN_CTRLMODE_ONE_SHOT), 0);
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	ch_run(rig, 5 * MS);
+	assert_int_equal(node->ev.tx_aborted_count, 1);
+	assert_int_equal(node->ev.tx_done_count, 0);
+	assert_int_equal(node->core.counters.tx_errors, 1);
+	assert_int_equal(mcp2510_tx_free(&node->core), 3);
+	assert_false(ch_int_asserted(node));
+	ch_rig_free(rig);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_lone_node_goes_passive),
+		cmocka_unit_test(test_bus_off_and_the_chips_own_recovery),
+		cmocka_unit_test(test_restart_from_bus_off),
+		cmocka_unit_test(test_bus_error_reporting),
+		cmocka_unit_test(test_error_counters),
+		cmocka_unit_test(test_one_shot_failure_is_reported),
+	};
+
+	return cmocka_run_group_tests_name("core_error", tests, NULL, NULL);
+}
