@@ -1,25 +1,42 @@
 # driver/core/core.mk: the portable driver core.
 #
-# CORE_SRCS is compiled into the kernel module (Kbuild names the matching
-# objects) and into libmcp2510; CORE_USER_SRCS only into userspace, as it
-# divides 64-bit numbers.  Both relative to $(TOP).
+# CORE_SRCS is compiled into the kernel module (the root Kbuild includes
+# this file for it) and into libmcp2510; CORE_USER_SRCS only into
+# userspace, as it divides 64-bit numbers.  Both relative to the top.
+#
+#   make core-check   build the kernel part with extra warnings and prove
+#                     it needs nothing from libc but memcpy/memset
 
 CORE_DIR := driver/core
 CORE_SRCS := $(addprefix $(CORE_DIR)/, \
 	spi.c bringup.c start.c bittiming.c frame.c filter.c tx.c irq.c \
 	error.c pins.c)
 CORE_USER_SRCS := $(CORE_DIR)/bittiming_calc.c
-CORE_HDRS := $(wildcard $(TOP)/$(CORE_DIR)/*.h)
-CORE_CFLAGS := -I$(TOP)/$(CORE_DIR) -I$(TOP)/uapi
 
-CORE_OBJ_DIR := $(BUILD)/core
-CORE_OBJS := $(patsubst $(CORE_DIR)/%.c,$(CORE_OBJ_DIR)/%.o, \
-	$(CORE_SRCS) $(CORE_USER_SRCS))
+# Everything below is for the top Makefile, not for Kbuild.
+ifeq ($(KERNELRELEASE),)
 
-.PHONY: core-objs
-core-objs: $(CORE_OBJS)
+CORE_CPPFLAGS := -I$(TOP)/uapi -I$(TOP)/$(CORE_DIR)
+CORE_ALLOWED_SYMBOLS := memcpy memset
+CORE_STRICT := -Wvla -Wshadow -Wmissing-prototypes -Wstrict-prototypes \
+	       -Wcast-qual -Wpointer-arith -Wundef -fno-builtin -O2
+CORE_CHECK_OBJS := $(patsubst $(CORE_DIR)/%.c,$(BUILD)/core/%.o,$(CORE_SRCS))
 
-$(CORE_OBJ_DIR)/%.o: $(TOP)/$(CORE_DIR)/%.c $(CORE_HDRS) \
+$(BUILD)/core/%.o: $(TOP)/$(CORE_DIR)/%.c $(wildcard $(TOP)/$(CORE_DIR)/*.h) \
 		$(TOP)/uapi/linux/can/mcp2510.h
-	@mkdir -p $(dir $@)
-	$(CC) $(CSTD) $(WARN) -O2 $(CORE_CFLAGS) -c $< -o $@
+	@mkdir -p $(@D)
+	$(CC) $(CSTD) $(WARN) $(CORE_STRICT) $(CORE_CPPFLAGS) -c $< -o $@
+
+$(BUILD)/core/core.o: $(CORE_CHECK_OBJS)
+	$(LD) -r -o $@ $^
+
+.PHONY: core-check
+core-check: $(BUILD)/core/core.o
+	@bad=$$(nm -u $< | awk '{ print $$2 }' | \
+		grep -vxF $(addprefix -e ,$(CORE_ALLOWED_SYMBOLS)) || true); \
+	if [ -n "$$bad" ]; then echo "core-check: the core needs:" $$bad >&2; exit 1; fi; \
+	echo "core-check: the core builds clean and takes only $(CORE_ALLOWED_SYMBOLS) from outside"
+
+CHECK_STEPS += core-check
+
+endif
