@@ -199,6 +199,8 @@ int mcp2510_bittiming_encode(const struct can_bittiming *bt, u32 ctrlmode,
  * @bt->bitrate and @bt->sample_point (tenths of a percent, 0 for the CiA
  * default) at @clock_hz (the CAN clock: oscillator / 2).  For userspace,
  * where no kernel calculator runs; the kernel module does not use it.
+ * -EINVAL for a zero clock or bit rate or a sample point of 100 % or
+ * more, -EDOM when the chip cannot come within 5 % of the bit rate.
  */
 int mcp2510_bittiming_calc(u32 clock_hz, struct can_bittiming *bt);
 /* Inverse of mcp2510_bittiming_encode(), for dumps and tests. */
@@ -216,7 +218,11 @@ int mcp2510_start(struct mcp2510_chip *chip, const struct can_bittiming *bt,
 		  u32 ctrlmode);
 /* Abort pending frames (tx_aborted for each), mask interrupts, sleep. */
 int mcp2510_stop(struct mcp2510_chip *chip);
-/* Bus-off recovery or a manual restart: re-enter the operating mode. */
+/*
+ * Bus-off recovery or a manual restart: drop queued frames (tx_aborted),
+ * reset the chip (clearing TEC/REC), program what mcp2510_start() was
+ * given and enter the operating mode; a state event reports error-active.
+ */
 int mcp2510_restart(struct mcp2510_chip *chip);
 /*
  * Check and keep masks and filters; mcp2510_start() programs them in
@@ -244,7 +250,9 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
  * one pass is enough (the line fires again while anything is pending);
  * with chip->irq_edge set it loops until nothing is pending.  The loop is
  * bounded: a chip that never stops asserting returns -EAGAIN and counts an
- * irq storm.  Returns the number of flags handled.
+ * irq storm.  Returns the number of flags handled.  Received frames are
+ * delivered after their flags are cleared, so a failed clear (-EIO) makes
+ * the next call read them again rather than deliver them twice.
  */
 int mcp2510_irq_handle(struct mcp2510_chip *chip);
 
