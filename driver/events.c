@@ -1,25 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * What the core reports, turned into skbs and statistics.  Every event
- * arrives with the chip lock held, mostly from the IRQ thread, so the
- * offload queue (filled without its own lock) sees one producer at a time
- * and frames reach the stack in the order the chip received them.
+ * arrives with the chip lock held, mostly from the IRQ thread, so frames
+ * are queued for the stack in the order the chip received them.
  */
 #include <linux/can/skb.h>
 #include <linux/netdevice.h>
 
 #include "mcp2510_priv.h"
-
-static void mcp2510_deliver(struct mcp2510_priv *priv, struct sk_buff *skb)
-{
-	struct net_device_stats *stats = &priv->ndev->stats;
-
-	/* The offload frees the skb when its queue is full. */
-	if (can_rx_offload_queue_tail(&priv->offload, skb)) {
-		stats->rx_dropped++;
-		stats->rx_fifo_errors++;
-	}
-}
 
 static void mcp2510_event_rx(void *ctx, const struct can_frame *frame)
 {
@@ -33,8 +21,8 @@ static void mcp2510_event_rx(void *ctx, const struct can_frame *frame)
 		return;
 	}
 	*cf = *frame;
-	/* rx_packets and rx_bytes are counted by the offload on delivery. */
-	mcp2510_deliver(priv, skb);
+	/* rx_packets and rx_bytes are counted on delivery. */
+	mcp2510_rx_queue(priv, skb);
 }
 
 static void mcp2510_event_tx_done(void *ctx, unsigned int slot)
@@ -123,7 +111,7 @@ static void mcp2510_event_error(void *ctx, const struct can_frame *frame)
 	if (!skb)
 		return;
 	*cf = *frame;
-	mcp2510_deliver(priv, skb);
+	mcp2510_rx_queue(priv, skb);
 }
 
 const struct mcp2510_events mcp2510_netdev_events = {

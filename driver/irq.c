@@ -38,7 +38,7 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data)
 	if (priv->halt_requested)
 		mcp2510_halt_locked(priv);
 	mcp2510_unlock(priv);
-	can_rx_offload_threaded_irq_finish(&priv->offload);
+	mcp2510_rx_kick(priv);
 
 	if (handled == -EAGAIN) {
 		netdev_warn_once(priv->ndev, "INT keeps asserting: interrupt storm\n");

@@ -9,7 +9,7 @@
 #define MCP2510_PRIV_H
 
 #include <linux/can/dev.h>
-#include <linux/can/rx-offload.h>
+#include <linux/skbuff.h>
 #include <linux/gpio/driver.h>
 #include <linux/mutex.h>
 #include <linux/spinlock.h>
@@ -32,7 +32,8 @@ struct clk;
 
 struct mcp2510_priv {
 	struct can_priv can;		/* first: the CAN core expects it */
-	struct can_rx_offload offload;
+	struct napi_struct napi;
+	struct sk_buff_head rx_queue;	/* frames for the stack, in order */
 	struct net_device *ndev;
 	struct spi_device *spi;
 	struct regulator *vdd;
@@ -87,6 +88,13 @@ void mcp2510_unlock(struct mcp2510_priv *priv);
 
 /* events.c: the core's reports turned into skbs and statistics */
 extern const struct mcp2510_events mcp2510_netdev_events;
+
+/* rx.c */
+void mcp2510_rx_init(struct mcp2510_priv *priv);
+void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb);
+void mcp2510_rx_kick(struct mcp2510_priv *priv);
+int mcp2510_rx_poll(struct napi_struct *napi, int budget);
+void mcp2510_rx_disable(struct mcp2510_priv *priv);
 
 /* netdev.c */
 extern const struct net_device_ops mcp2510_netdev_ops;

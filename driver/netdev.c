@@ -69,7 +69,7 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 	if (ret)
 		return ret;
 
-	can_rx_offload_enable(&priv->offload);
+	napi_enable(&priv->napi);
 	/*
 	 * The handler is in place before the chip starts: on an edge
 	 * triggered line an INT asserted during start would otherwise never
@@ -79,7 +79,7 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 				   priv->irq_flags | IRQF_ONESHOT,
 				   dev_name(&priv->spi->dev), priv);
 	if (ret)
-		goto out_disable_offload;
+		goto out_disable_rx;
 
 	mcp2510_lock(priv);
 	ret = mcp2510_chip_start_locked(priv);
@@ -88,15 +88,15 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 	else
 		priv->hw_running = true;
 	mcp2510_unlock(priv);
-	can_rx_offload_threaded_irq_finish(&priv->offload);
+	mcp2510_rx_kick(priv);
 	if (ret)
 		goto out_free_irq;
 	return 0;
 
 out_free_irq:
 	free_irq(priv->spi->irq, priv);
-out_disable_offload:
-	can_rx_offload_disable(&priv->offload);
+out_disable_rx:
+	mcp2510_rx_disable(priv);
 	mcp2510_xceiver_disable(priv);
 	priv->can.state = CAN_STATE_STOPPED;
 	return ret;
@@ -122,8 +122,8 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 	mcp2510_tx_forget(priv);
 	mcp2510_unlock(priv);
 
-	can_rx_offload_threaded_irq_finish(&priv->offload);
-	can_rx_offload_disable(&priv->offload);
+	mcp2510_rx_kick(priv);
+	mcp2510_rx_disable(priv);
 	mcp2510_xceiver_disable(priv);
 	priv->can.state = CAN_STATE_STOPPED;
 }
@@ -157,7 +157,7 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 			priv->can.state = CAN_STATE_ERROR_ACTIVE;
 	}
 	mcp2510_unlock(priv);
-	can_rx_offload_threaded_irq_finish(&priv->offload);
+	mcp2510_rx_kick(priv);
 	if (ret)
 		return ret;
 

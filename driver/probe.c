@@ -173,6 +173,8 @@ static int mcp2510_setup_netdev(struct mcp2510_priv *priv,
 	ndev->netdev_ops = &mcp2510_netdev_ops;
 	ndev->ethtool_ops = &mcp2510_ethtool_ops;
 	ndev->sysfs_groups[0] = &mcp2510_filter_group;
+	/* Echo sent frames on TX completion, not when queued. */
+	ndev->flags |= IFF_ECHO;
 	return 0;
 }
 
@@ -219,14 +221,11 @@ static int mcp2510_probe(struct spi_device *spi)
 		goto out_power_off;
 	}
 
-	ret = can_rx_offload_add_manual(ndev, &priv->offload,
-					NAPI_POLL_WEIGHT);
-	if (ret)
-		goto out_power_off;
+	mcp2510_rx_init(priv);
 	ret = mcp2510_gpio_register(priv);
 	if (ret) {
 		dev_err(dev, "cannot add the gpiochip: %pe\n", ERR_PTR(ret));
-		goto out_del_offload;
+		goto out_del_napi;
 	}
 	ret = register_candev(ndev);
 	if (ret) {
@@ -240,8 +239,8 @@ static int mcp2510_probe(struct spi_device *spi)
 
 out_remove_gpio:
 	mcp2510_gpio_unregister(priv);
-out_del_offload:
-	can_rx_offload_del(&priv->offload);
+out_del_napi:
+	netif_napi_del(&priv->napi);
 out_power_off:
 	mcp2510_power_off(priv);
 out_free_candev:
@@ -256,7 +255,7 @@ static void mcp2510_remove(struct spi_device *spi)
 
 	unregister_candev(ndev);
 	mcp2510_gpio_unregister(priv);
-	can_rx_offload_del(&priv->offload);
+	netif_napi_del(&priv->napi);
 	mcp2510_power_off(priv);
 	free_candev(ndev);
 }
