@@ -46,6 +46,7 @@ struct mcp2510_sim_chip {
 	u32 spi_fail_left;
 	bool powered;			/* as last set through debugfs "power" */
 	struct software_node swnode;
+	char swnode_name[24];
 	struct spi_device *spi;
 };
 

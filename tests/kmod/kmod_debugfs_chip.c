@@ -164,7 +164,10 @@ static int state_show(struct seq_file *m, void *v)
 	seq_printf(m, "irq %d\nirq_type %s\nirq_masked %d\n",
 		   chip->spi ? chip->spi->irq : 0, trigger_name(line.type),
 		   line.masked);
-	seq_printf(m, "spi_device %s\n", chip->spi ? dev_name(&chip->spi->dev) : "none");
+	if (chip->spi)
+		seq_printf(m, "spi_device %s\nspi_bus %d\nspi_cs %u\n",
+			   dev_name(&chip->spi->dev), chip->spi->controller->bus_num,
+			   spi_get_chipselect(chip->spi, 0));
 	return 0;
 }
 

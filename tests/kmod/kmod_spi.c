@@ -196,7 +196,13 @@ static int add_chip_device(struct mcp2510_sim_chip *chip, const char *driver)
 	if (ret)
 		goto out_put;
 
-	/* what a device tree gives a real chip: the oscillator frequency */
+	/*
+	 * What a device tree gives a real chip: the oscillator frequency.  The
+	 * node's name is the device's name from 6.12 on ("spi-<node>").
+	 */
+	snprintf(chip->swnode_name, sizeof(chip->swnode_name), "%s-chip%u",
+		 MCP2510_SIM_NAME, chip->index);
+	chip->swnode.name = chip->swnode_name;
 	chip->swnode.properties = sim->props;
 	ret = device_add_software_node(&spi->dev, &chip->swnode);
 	if (ret)
