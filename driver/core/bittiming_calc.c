@@ -14,7 +14,9 @@
  *    first exact match;
  *  - the winner's TSEG1 is split evenly, the odd quantum to PS1; SJW is
  *    1 unless asked for, then capped at 4 and at PS2;
- *  - more than 5.0 % bit-rate error is refused.
+ *  - more than 5.0 % bit-rate error is refused;
+ *  - unlike the kernel, a split leaving TSEG1 below the chip's minimum or
+ *    shorter than TSEG2 is no candidate: it could not be programmed.
  *
  * Not built into the kernel module: it divides 64-bit numbers.
  */
@@ -54,7 +56,9 @@ static u32 nominal_sample_point(const struct can_bittiming *bt)
  * Split @tseg quanta (all but the sync segment) into TSEG1 and TSEG2 with
  * the sample point nearest to @nominal without passing it, trying the
  * TSEG2 the nominal point asks for and one quantum less.  No split at all
- * can come out when TSEG2's limits push the point past @nominal.
+ * can come out when TSEG2's limits push the point past @nominal, or when
+ * the TSEG1 left over is too short (the kernel's calculator would hand
+ * such a split on; the encoder refuses it).
  */
 static struct split split_tseg(const struct can_bittiming_const *btc,
 			       u32 nominal, u32 tseg)
@@ -73,6 +77,12 @@ static struct split split_tseg(const struct can_bittiming_const *btc,
 			s.tseg1 = btc->tseg1_max;
 			s.tseg2 = tseg - s.tseg1;
 		}
+		/*
+		 * An early nominal point leaves TSEG1 shorter than the chip
+		 * counts, or than TSEG2 (AN739: PRSEG + PS1 >= PS2).
+		 */
+		if (s.tseg1 < btc->tseg1_min || s.tseg1 < s.tseg2)
+			continue;
 		s.sample_point = 1000 * (ntq - s.tseg2) / ntq;
 		s.error = distance(nominal, s.sample_point);
 		if (s.sample_point <= nominal && s.error < best.error)

@@ -200,7 +200,8 @@ int mcp2510_bittiming_encode(const struct can_bittiming *bt, u32 ctrlmode,
  * default) at @clock_hz (the CAN clock: oscillator / 2).  For userspace,
  * where no kernel calculator runs; the kernel module does not use it.
  * -EINVAL for a zero clock or bit rate or a sample point of 100 % or
- * more, -EDOM when the chip cannot come within 5 % of the bit rate.
+ * more, -EDOM when the chip cannot come within 5 % of the bit rate with
+ * a sample point no later than the one asked for.
  */
 int mcp2510_bittiming_calc(u32 clock_hz, struct can_bittiming *bt);
 /* Inverse of mcp2510_bittiming_encode(), for dumps and tests. */

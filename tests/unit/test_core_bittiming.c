@@ -234,6 +234,31 @@ static void test_calc_sample_point_and_sjw_requests(void **state)
 	assert_int_equal(bt.sjw, 2);
 }
 
+/*
+ * Found by tests/fuzz (bittiming): an early sample point made the
+ * calculator split off a TSEG1 below the chip's minimum (PROP_SEG 0 at
+ * 30 %) or shorter than PS2, timing the encoder then refused.
+ */
+static void test_calc_early_sample_point(void **state)
+{
+	struct can_bittiming bt = { .bitrate = 500000, .sample_point = 300 };
+	u8 cnf[3];
+
+	(void)state;
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), -EDOM);
+	/* 16 quanta at 50.0 % would need PRSEG + PS1 = 7 < PS2 = 8 */
+	bt = (struct can_bittiming){ .bitrate = 125000, .sample_point = 500 };
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), -EDOM);
+
+	/* 55 %: 13 quanta of 625 ns, 53.8 %, 1.5 % slow */
+	bt = (struct can_bittiming){ .bitrate = 125000, .sample_point = 550 };
+	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), 0);
+	assert_chip_can_run(&bt);
+	assert_int_equal(bt.sample_point, 538);
+	assert_int_equal(bt.bitrate, 123076);
+	assert_int_equal(mcp2510_bittiming_encode(&bt, 0, cnf), 0);
+}
+
 static void test_calc_refuses_nonsense(void **state)
 {
 	struct can_bittiming bt = { .bitrate = 0 };
@@ -259,6 +284,7 @@ int main(void)
 		cmocka_unit_test(test_decode_without_btlmode),
 		cmocka_unit_test(test_calc_matches_the_kernel),
 		cmocka_unit_test(test_calc_sample_point_and_sjw_requests),
+		cmocka_unit_test(test_calc_early_sample_point),
 		cmocka_unit_test(test_calc_refuses_nonsense),
 	};
 
