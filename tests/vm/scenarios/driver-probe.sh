@@ -42,7 +42,7 @@ fi
 # ethtool: identity and the 128-byte register dump.
 ethtool -i can0 | tee /tmp/drvinfo
 grep -qx 'driver: mcp2510' /tmp/drvinfo || fail "ethtool driver name"
-grep -q '^bus-info: spi[0-9]*\.[0-9]*$' /tmp/drvinfo || fail "ethtool bus-info"
+grep -qx "bus-info: $(basename "$(readlink /sys/class/net/can0/device)")" /tmp/drvinfo || fail "ethtool bus-info"
 ethtool -d can0 raw on >/tmp/regs
 [ "$(wc -c </tmp/regs)" -eq 128 ] || fail "register dump is $(wc -c </tmp/regs) bytes"
 # canstat ADDR: CANSTAT.OPMOD (bits 7-5) from a fresh dump.
