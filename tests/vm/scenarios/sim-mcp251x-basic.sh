@@ -1,11 +1,13 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp251x
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
+# vm-run: --nodes 2 --variant mcp2515 --driver mcp251x --sim-param time_scale=8
 # Mainline mcp251x, a driver this project did not write, on two simulated
 # chips: it probes, brings both up at 125 kbit/s and moves frames both ways,
 # which checks the chip model and the simulated SPI controller against an
 # independent reading of the data sheet.  The simulator's own view (bus
-# monitor, counters, INT as a GPIO line, phantom node) must agree.
+# monitor, counters, INT as a GPIO line, phantom node) must agree, and bus
+# time must run time_scale times slower than the guest's clock.
 set -eu
 . /lib/rig.sh
 
@@ -22,6 +24,23 @@ done
 counter() {
 	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
 }
+
+# guest_ms: the guest's clock in ms (/proc/uptime counts in 10 ms steps)
+guest_ms() {
+	read -r _up _idle </proc/uptime
+	_frac=${_up#*.}
+	echo $((${_up%.*} * 1000 + ${_frac#0} * 10))
+}
+scale=$(cat /sys/module/mcp2510_sim/parameters/time_scale)
+bus0=$(cat $sim/time_ns) real0=$(guest_ms)
+sleep 2
+bus1=$(cat $sim/time_ns) real1=$(guest_ms)
+bus_ms=$(((bus1 - bus0) / 1000000)) real_ms=$((real1 - real0))
+echo "time_scale $scale: ${bus_ms} ms of bus time in ${real_ms} ms"
+# within 5 %, more than the 10 ms steps of the guest's clock can explain
+[ $((bus_ms * scale * 100)) -ge $((real_ms * 95)) ] &&
+	[ $((bus_ms * scale * 100)) -le $((real_ms * 105)) ] ||
+	fail "bus time ran ${bus_ms} ms in ${real_ms} ms with time_scale $scale"
 
 for i in 0 1; do
 	echo 0 >$sim/chip$i/counters
