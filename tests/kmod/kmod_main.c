@@ -4,6 +4,8 @@
  * through a virtual SPI controller, for testing SPI CAN drivers in a VM.
  * Module parameters are described in docs/simulator.md.
  */
+#define pr_fmt(fmt) KBUILD_MODNAME ": " fmt
+
 #include <linux/device.h>
 #include <linux/err.h>
 #include <linux/mm.h>
@@ -71,27 +73,24 @@ static const struct chip_variant *find_variant(const char *name)
 static int check_params(void)
 {
 	if (nodes < 1 || nodes > SIM_MAX_NODES) {
-		pr_err(MCP2510_SIM_NAME ": nodes=%u: need 1..%d\n", nodes,
-		       SIM_MAX_NODES);
+		pr_err("nodes=%u: need 1..%d\n", nodes, SIM_MAX_NODES);
 		return -EINVAL;
 	}
 	if (!find_variant(variant)) {
-		pr_err(MCP2510_SIM_NAME ": variant=%s: unknown\n", variant);
+		pr_err("variant=%s: unknown\n", variant);
 		return -EINVAL;
 	}
 	if (match_string(drivers, ARRAY_SIZE(drivers), driver) < 0) {
-		pr_err(MCP2510_SIM_NAME ": driver=%s: need mcp2510 or mcp251x\n",
-		       driver);
+		pr_err("driver=%s: need mcp2510 or mcp251x\n", driver);
 		return -EINVAL;
 	}
 	if (time_scale < 1 || time_scale > MAX_TIME_SCALE) {
-		pr_err(MCP2510_SIM_NAME ": time_scale=%u: need 1..%d\n",
-		       time_scale, MAX_TIME_SCALE);
+		pr_err("time_scale=%u: need 1..%d\n", time_scale,
+		       MAX_TIME_SCALE);
 		return -EINVAL;
 	}
 	if (spidev_node < -1 || spidev_node >= (int)nodes) {
-		pr_err(MCP2510_SIM_NAME ": spidev_node=%d: no such chip\n",
-		       spidev_node);
+		pr_err("spidev_node=%d: no such chip\n", spidev_node);
 		return -EINVAL;
 	}
 	return 0;
@@ -113,8 +112,7 @@ static int build_bus(struct mcp2510_sim *sim, const struct chip_variant *v)
 		chip->powered = true;
 		ret = sim_chip_init(&chip->model, v->model, osc_hz);
 		if (ret) {
-			pr_err(MCP2510_SIM_NAME ": osc_hz=%u: rejected by the model\n",
-			       osc_hz);
+			pr_err("osc_hz=%u: rejected by the model\n", osc_hz);
 			return ret;
 		}
 		ret = sim_bus_attach(&sim->bus, &chip->model);

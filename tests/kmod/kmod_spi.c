@@ -27,33 +27,19 @@ static size_t period_limit(struct spi_device *spi)
 	return MCP2510_SIM_SPI_BUF_LEN;
 }
 
-/* True when the spi_errors fault claims this message. */
-static bool take_injected_error(struct mcp2510_sim_chip *chip)
-{
-	struct mcp2510_sim *sim = chip->sim;
-	bool fail;
-
-	mcp2510_sim_lock(sim);
-	fail = chip->spi_fail_left > 0;
-	if (fail) {
-		chip->spi_fail_left--;
-		chip->harness.spi_failed++;
-	}
-	mcp2510_sim_unlock(sim);
-	return fail;
-}
-
 /*
- * The chip samples on the rising edge with the clock idling either low or
- * high (modes 0 and 3); other modes or a faster clock would garble real
- * traffic.  The model cannot garble bits realistically, so it only counts.
+ * Book-keeping before the chip sees a message; true when the spi_errors
+ * fault claims it.  The chip samples on the rising edge with the clock
+ * idling low or high (modes 0 and 3); other modes or a faster clock would
+ * garble real traffic, which the model cannot imitate, so they are counted.
  */
-static void account_clocking(struct mcp2510_sim_chip *chip,
-			     const struct spi_message *msg)
+static bool account_message(struct mcp2510_sim_chip *chip,
+			    const struct spi_message *msg)
 {
 	u32 mode = msg->spi->mode & SPI_MODE_X_MASK;
 	const struct spi_transfer *xfer;
 	u64 overspeed = 0;
+	bool fail;
 
 	list_for_each_entry(xfer, &msg->transfers, transfer_list)
 		if (xfer->speed_hz > chip->sim->sck_max_hz)
@@ -63,7 +49,13 @@ static void account_clocking(struct mcp2510_sim_chip *chip,
 	if (mode == SPI_MODE_1 || mode == SPI_MODE_2)
 		chip->harness.spi_mode_errors++;
 	chip->harness.spi_overspeed += overspeed;
+	fail = chip->spi_fail_left > 0;
+	if (fail) {
+		chip->spi_fail_left--;
+		chip->harness.spi_failed++;
+	}
 	mcp2510_sim_unlock(chip->sim);
+	return fail;
 }
 
 /*
@@ -131,8 +123,7 @@ static int transfer_one_message(struct spi_controller *ctlr,
 	int ret;
 
 	chip = &sim->chips[spi_get_chipselect(msg->spi, 0)];
-	account_clocking(chip, msg);
-	ret = take_injected_error(chip) ? -EIO : run_message(chip, msg);
+	ret = account_message(chip, msg) ? -EIO : run_message(chip, msg);
 	msg->status = ret;
 	spi_finalize_current_message(ctlr);
 	return ret;

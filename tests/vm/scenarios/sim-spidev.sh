@@ -60,7 +60,15 @@ watch_int1() {
 echo "== reload with spidev_node=1"
 rmmod mcp2510_sim || fail "cannot unload mcp2510-sim"
 [ ! -e /sys/class/net/can0 ] || fail "can0 outlived the simulator"
-insmod /opt/mcp2510/modules/mcp2510-sim.ko nodes=2 variant="$VM_VARIANT" \
+ko=/opt/mcp2510/modules/mcp2510-sim.ko
+for bad in nodes=0 nodes=9 variant=mcp2516 driver=spidev time_scale=0 \
+	"spidev_node=2 nodes=2" osc_hz=1; do
+	# shellcheck disable=SC2086 # several parameters in one word
+	if insmod $ko $bad 2>/dev/null; then
+		fail "mcp2510-sim accepted $bad"
+	fi
+done
+insmod $ko nodes=2 variant="$VM_VARIANT" \
 	driver="$VM_DRIVER" spidev_node=1 || fail "cannot load mcp2510-sim"
 wait_for test -e /sys/class/net/can0 || fail "chip 0 did not become can0"
 [ ! -e /sys/class/net/can1 ] || fail "chip 1 became a CAN interface"
