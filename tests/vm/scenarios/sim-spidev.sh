@@ -4,7 +4,8 @@
 # The simulator unloaded and loaded again with spidev_node=1: chip 0 stays a
 # CAN interface, chip 1 becomes /dev/spidevB.1.  Through spidev writes alone
 # the chip is reset, set to loopback and made to receive its own frame, and
-# its INT line, watched with libgpiod's gpiomon, must fall.  On the way the
+# its INT line, watched with libgpiod's gpiomon, must fall (and RX0BF, set to
+# signal a full RXB0, with it).  On the way the
 # spi_errors fault must fail exactly the messages asked for, and the
 # int_edge_miss fault must hide exactly one falling edge from gpiomon.
 set -eu
@@ -12,7 +13,8 @@ set -eu
 
 sim=/sys/kernel/debug/mcp2510-sim
 gpiochip=mcp2510-sim
-int1=1 # line INT1: INT lines come first, one per chip
+int1=1   # line INT1: the INT lines come first, one per chip,
+rx0bf1=3 # then RX0BF0, RX0BF1, ...
 
 counter() {
 	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
@@ -100,6 +102,7 @@ spi '\002\050\001\265\003'     # CNF3..CNF1: 125 kbit/s at 16 MHz
 spi '\002\053\001'             # CANINTE: RX0IE
 spi '\002\140\140'             # RXB0CTRL: receive any frame
 spi '\002\061\044\140\000\000\001\021' # TXB0: 123#11
+spi '\002\014\005'             # BFPCTRL: RX0BF signals "RXB0 full"
 spi '\002\017\100'             # CANCTRL: REQOP loopback
 wait_for state_is 1 opmode loopback || fail "chip1 did not enter loopback"
 [ "$(state 1 bitrate)" -eq 125000 ] || fail "chip1 bit rate $(state 1 bitrate)"
@@ -112,10 +115,12 @@ grep -q 'FALLING EDGE' /tmp/edge1.txt || fail "gpiomon saw no falling edge on IN
 [ "$(state 1 int)" -eq 0 ] || fail "INT1 not asserted"
 expect_counter 1 frames_rx 1
 expect_counter 1 interrupts 1
+[ "$(gpioget "$gpiochip" "$rx0bf1")" = 0 ] || fail "RX0BF1 does not show RXB0 full"
 
 echo "== int_edge_miss"
-spi '\002\054\000' # CANINTF = 0: INT rises
+spi '\002\054\000' # CANINTF = 0: INT rises, RXB0 is free again
 [ "$(state 1 int)" -eq 1 ] || fail "INT1 still asserted"
+[ "$(gpioget "$gpiochip" "$rx0bf1")" = 1 ] || fail "RX0BF1 still low with RXB0 free"
 echo 1 >$sim/chip1/int_edge_miss
 watch_int1 /tmp/edge2.txt
 spi '\201' # the second frame: this falling edge is lost
@@ -143,7 +148,10 @@ dump_start can0 1 /tmp/c0.txt
 echo 7FF#0102 >$sim/inject
 dump_wait
 grep -q '7FF *\[2\] *01 02$' /tmp/c0.txt || fail "can0 missed the phantom's 7FF#0102"
-ip link set can0 down
 
+# a running driver holds INT0, and with it the module that provides it
+if rmmod mcp2510_sim 2>/dev/null; then fail "mcp2510-sim unloaded under a running can0"; fi
+ip link set can0 down
 rmmod mcp2510_sim || fail "cannot unload mcp2510-sim at the end"
+[ ! -e /sys/class/net/can0 ] || fail "can0 outlived the simulator"
 echo "sim-spidev: ok"
