@@ -33,22 +33,34 @@
 #include <linux/can/error.h>
 #include <linux/can/netlink.h>
 
-typedef uint8_t u8;
-typedef uint16_t u16;
-typedef uint32_t u32;
-typedef uint64_t u64;
-typedef int32_t s32;
-typedef int64_t s64;
+/* The kernel's names, over the fixed-size types <linux/types.h> gives. */
+typedef __u8 u8;
+typedef __u16 u16;
+typedef __u32 u32;
+typedef __u64 u64;
+typedef __s32 s32;
+typedef __s64 s64;
 
 #define BIT(n)			(1UL << (n))
 #define GENMASK(h, l)		((~0ULL >> (63 - (h))) & (~0ULL << (l)))
 #define FIELD_PREP(mask, val)	(((val) << __builtin_ctzll(mask)) & (mask))
 #define FIELD_GET(mask, reg)	(((reg) & (mask)) >> __builtin_ctzll(mask))
 #define ARRAY_SIZE(a)		(sizeof(a) / sizeof((a)[0]))
-#define DIV_ROUND_CLOSEST(x, d)	(((x) + (d) / 2) / (d))
-#define DIV_ROUND_UP(x, d)	(((x) + (d) - 1) / (d))
+#define DIV_ROUND_CLOSEST(x, d)	mcp2510_div_round_closest(x, d)
+#define DIV_ROUND_UP(x, d)	mcp2510_div_round_up(x, d)
 #define U32_MAX			UINT32_MAX
 #define U64_MAX			UINT64_MAX
+
+/* Functions, not macros: each argument is evaluated once. */
+static inline u64 mcp2510_div_round_closest(u64 x, u64 d)
+{
+	return (x + d / 2) / d;
+}
+
+static inline u64 mcp2510_div_round_up(u64 x, u64 d)
+{
+	return (x + d - 1) / d;
+}
 
 #ifndef fallthrough
 #define fallthrough		__attribute__((__fallthrough__))
