@@ -6,8 +6,9 @@
 # the chip is reset, set to loopback and made to receive its own frame, and
 # its INT line, watched with libgpiod's gpiomon, must fall (and RX0BF, set to
 # signal a full RXB0, with it).  On the way the
-# spi_errors fault must fail exactly the messages asked for, and the
-# int_edge_miss fault must hide exactly one falling edge from gpiomon.
+# spi_errors fault must fail exactly the messages asked for, the
+# int_edge_miss fault must hide exactly one falling edge from gpiomon, and a
+# power loss must let INT float high and power-on restart the chip.
 set -eu
 . /lib/rig.sh
 
@@ -135,6 +136,16 @@ wait "$MON_PID" || fail "gpiomon failed"
 grep -q 'FALLING EDGE' /tmp/edge2.txt || fail "the edge after the missed one was lost too"
 expect_counter 1 frames_rx 3
 expect_counter 1 interrupts 3
+
+echo "== power loss"
+[ "$(gpioget "$gpiochip" "$int1")" = 0 ] || fail "INT1 not asserted before the power loss"
+echo 0 >$sim/chip1/power
+[ "$(gpioget "$gpiochip" "$int1")" = 1 ] || fail "INT1 of an unpowered chip is not pulled high"
+[ "$(state 1 ready)" = 0 ] || fail "an unpowered chip claims to be ready"
+echo 1 >$sim/chip1/power
+wait_for state_is 1 ready 1 || fail "chip1 did not start up after power-on"
+[ "$(state 1 opmode)" = config ] || fail "chip1 is not in configuration mode after power-on"
+[ "$(gpioget "$gpiochip" "$int1")" = 1 ] || fail "INT1 asserted after power-on"
 
 echo "== chip 0 still works as can0"
 ip link set can0 type can bitrate 125000
