@@ -10,6 +10,7 @@
 #                             headers with W=1 and sparse (C=1), and
 #                             checkpatch.pl --strict on every kernel source
 #   make install [KDIR=dir]   mcp2510.ko into <modules>/extra, then depmod
+#                             (INSTALL_MOD_PATH=dir stages it under dir)
 #
 # Every build runs in build/kbuild/<tag>/, a tree of symlinks to the
 # sources, so builds for several kernels never share objects and the
@@ -28,18 +29,15 @@ KBUILD_TREES := $(BUILD)/kbuild
 MODULES_OUT := $(BUILD)/modules
 KERNEL_PACKAGES := build-essential bc kmod
 
-# $(call kbuild_tree,DIR,SOURCES): refresh DIR as a mirror of SOURCES made
-# of symlinks (build products and hidden files left out), dropping links
-# whose source is gone.
-define kbuild_tree
-	mkdir -p $(1)
-	cd $(TOP) && find $(2) -type f ! -name '.*' ! -name '*.o' \
-		! -name '*.ko' ! -name '*.mod' ! -name '*.mod.c' 2>/dev/null | \
+# $(call kbuild_tree,DIR,SOURCES): one shell command that refreshes DIR as
+# a mirror of SOURCES made of symlinks (build products and hidden files left
+# out), dropping links whose source is gone.
+kbuild_tree = mkdir -p $(1) && \
+	(cd $(TOP) && find $(2) -type f ! -name '.*' ! -name '*.o' \
+		! -name '*.ko' ! -name '*.mod' ! -name '*.mod.c' 2>/dev/null) | \
 	while read -r f; do \
 		mkdir -p "$(1)/$$(dirname "$$f")" && ln -sfn "$(TOP)/$$f" "$(1)/$$f"; \
-	done
-	find $(1) -xtype l -delete
-endef
+	done && find $(1) -xtype l -delete
 
 # $(call kbuild_modules,KDIR,TAG,MAKEFLAGS): build both modules for one
 # kernel and publish them in build/modules/TAG/.
@@ -66,7 +64,8 @@ modules: modules-deps
 modules-for:
 	$(call kbuild_modules,$(KDIR),$(call kernel_release,$(KDIR)))
 
-RIG_KERNELS := 6.1 6.12 debug
+# The rig's kernels (tests/vm/vm.mk's VM_KERNELS when set).
+RIG_KERNELS = $(or $(VM_KERNELS),6.1 6.12 debug)
 modules-rig: modules-deps
 	@set -e; for k in $(RIG_KERNELS); do \
 		kdir=$$($(TOP)/tests/vm/kernel-info $$k kdir 2>/dev/null) || { \
@@ -92,7 +91,8 @@ install-for:
 	$(MAKE) -C $(KDIR) M=$(KBUILD_TREES)/install MCP2510_DRIVER_ONLY=1 modules
 	$(MAKE) -C $(KDIR) M=$(KBUILD_TREES)/install MCP2510_DRIVER_ONLY=1 \
 		INSTALL_MOD_DIR=extra modules_install
-	depmod -a $(call kernel_release,$(KDIR))
+	depmod $(if $(INSTALL_MOD_PATH),-b $(INSTALL_MOD_PATH)) -a \
+		$(call kernel_release,$(KDIR))
 
 # ---- modules-check --------------------------------------------------------
 
@@ -130,20 +130,23 @@ checkpatch: $(CHECKPATCH)
 		echo "checkpatch: findings above" >&2; exit 1; fi
 	@echo "checkpatch --strict: clean ($(words $(KERNEL_SOURCES)) files)"
 
-# $(call strict_build,HEADERS-PACKAGE,TAG): a full rebuild with W=1 and
-# sparse on every file; any compiler, sparse or modpost warning fails it.
+# $(call strict_build,HEADERS-PACKAGE,TAG): a full build with W=1 and sparse
+# on every file, in a fresh tree of its own (several people may run this at
+# once); any compiler, sparse or modpost warning fails it.
 define strict_build
 	@[ -n "$(1)" ] || { echo "modules-check: no $(2) headers package found" >&2; exit 1; }
 	@$(ENSURE) $(1)
-	@$(call kbuild_tree,$(KBUILD_TREES)/check-$(2),$(KBUILD_SOURCES))
-	@$(MAKE) -s -C /usr/src/$(1) M=$(KBUILD_TREES)/check-$(2) clean
 	@echo "== $(1): W=1 C=1"
-	@$(MAKE) -C /usr/src/$(1) M=$(KBUILD_TREES)/check-$(2) W=1 C=1 modules \
-		> $(KBUILD_TREES)/check-$(2).log 2>&1 || { \
-		cat $(KBUILD_TREES)/check-$(2).log; exit 1; }
-	@if grep -q 'warning:\|error:\|WARNING:\|ERROR:' $(KBUILD_TREES)/check-$(2).log; then \
-		grep 'warning:\|error:\|WARNING:\|ERROR:' $(KBUILD_TREES)/check-$(2).log; \
-		echo "modules-check: $(1) build not clean" >&2; exit 1; fi
+	@mkdir -p $(KBUILD_TREES); \
+	tree=$$(mktemp -d $(KBUILD_TREES)/check-$(2).XXXXXX); \
+	log=$$tree.log; \
+	$(call kbuild_tree,$$tree,$(KBUILD_SOURCES)) && \
+	if ! $(MAKE) -C /usr/src/$(1) M=$$tree W=1 C=1 modules >$$log 2>&1; then \
+		cat $$log; echo "modules-check: $(1) build failed" >&2; exit 1; fi; \
+	if grep -q 'warning:\|error:\|WARNING:\|ERROR:' $$log; then \
+		grep 'warning:\|error:\|WARNING:\|ERROR:' $$log; \
+		echo "modules-check: $(1) build not clean (log: $$log)" >&2; exit 1; fi; \
+	rm -rf $$tree $$log
 	@echo "$(1): no warnings"
 endef
 
@@ -161,3 +164,7 @@ modules-check: modules-deps
 modules-check-build:
 	$(call strict_build,$(HEADERS_6_1),6.1)
 	$(call strict_build,$(HEADERS_6_12),6.12)
+
+CHECK_STEPS += modules-check
+# The rig boots what modules-rig leaves in build/modules/<kernel>/.
+VMTEST_DEPS += modules-rig
