@@ -107,7 +107,7 @@ static bool name_equal(const char *name, const char *s, size_t len)
 
 int mcp2510_rxm_parse(const char *s, size_t len, u8 *rxm)
 {
-	u8 i;
+	unsigned int i;
 
 	len = strip_newline(s, len);
 	for (i = 0; i < ARRAY_SIZE(rxm_names); i++) {
