@@ -141,7 +141,7 @@ static int run(struct mcp2510 *h, int sock, int stop_fd)
 		"%s: stopped; %llu frames to the interface, %llu to the chip, %llu dropped\n",
 		PROG, (unsigned long long)b.counts.to_socket,
 		(unsigned long long)b.counts.to_chip,
-		(unsigned long long)(b.counts.socket_drops + b.counts.chip_drops));
+		(unsigned long long)b.counts.socket_drops + b.counts.chip_drops);
 	return 0;
 }
 
