@@ -43,6 +43,8 @@ include driver/driver.mk
 include tests/kmod/kmod.mk
 include tests/vm/vm.mk
 include dts/dts.mk
+include tests/fuzz/fuzz.mk
+include tests/lint/lint.mk
 
 check: deps
 	@set -e; for step in $(CHECK_STEPS); do \
