@@ -34,7 +34,10 @@
 /* Generous bounds that only a runaway loop can exceed. */
 #define MAX_XFERS_PER_CALL	4096
 #define MAX_DELAY_PER_CALL_US	10000000ULL
-/* The slowest bit: 64 * 25 quanta of two cycles of a 1 MHz oscillator. */
+/*
+ * No single wait comes near this: the longest is the last RESET retry,
+ * the 1 MHz start-up time doubled seven times (17 ms).
+ */
 #define MAX_WAIT_US		1000000U
 #define SLOTS			MCP2510_TXB_COUNT
 

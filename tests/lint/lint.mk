@@ -43,8 +43,9 @@ lint-deps:
 	@$(ENSURE) $(LINT_PACKAGES)
 
 lint-cppcheck: | lint-deps
-	cd $(TOP) && cppcheck $(LINT_CPPCHECK_FLAGS) $(LINT_INCLUDES) \
+	@cd $(TOP) && cppcheck $(LINT_CPPCHECK_FLAGS) $(LINT_INCLUDES) \
 		$(LINT_US_SRCS) $(LINT_CORE_SRCS) $(LINT_SIM_SRCS)
+	@echo "lint-cppcheck: $(words $(LINT_US_SRCS) $(LINT_CORE_SRCS) $(LINT_SIM_SRCS)) files clean"
 
 # One file per clang-tidy process, LINT_JOBS at a time: it is the slow one.
 # Its output is shown only for a file with findings (it counts the
