@@ -1,8 +1,10 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
-# What mcp2510.ko shows once it has probed two simulated MCP2510s: the
+# vm-run: --nodes 2 --variant mcp2515
+# vm-run: --nodes 2 --variant mcp25625
+# What mcp2510.ko shows once it has probed two simulated chips: the
 # binding and module aliases, the CAN core's view (bit-timing limits,
-# supported control modes), ethtool (identity, register dump: the chip
+# supported control modes: one-shot only on the MCP2515 and MCP25625), ethtool (identity, register dump: the chip
 # sleeps while the interface is down), and the hardware-filter files with
 # their rules (defaults, parsing, EINVAL keeps the old value, EBUSY while up).
 set -eu
@@ -35,8 +37,13 @@ for mode in "loopback on" "listen-only on" "triple-sampling on" "berr-reporting 
 	ip link set can0 type can bitrate 125000 $mode || fail "refused $mode"
 	ip link set can0 type can $(echo "$mode" | sed 's/ on$/ off/')
 done
-if ip link set can0 type can bitrate 125000 one-shot on 2>/dev/null; then
-	fail "an MCP2510 accepted one-shot"
+if [ "$VM_VARIANT" = mcp2510 ]; then
+	if ip link set can0 type can bitrate 125000 one-shot on 2>/dev/null; then
+		fail "an MCP2510 accepted one-shot"
+	fi
+else
+	ip link set can0 type can bitrate 125000 one-shot on || fail "refused one-shot"
+	ip link set can0 type can one-shot off
 fi
 
 # ethtool: identity and the 128-byte register dump.

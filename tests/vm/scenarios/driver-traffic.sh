@@ -64,7 +64,15 @@ grew() {
 	[ $((_now - $3)) -eq "$4" ] || { show; fail "$1 $2 grew by $((_now - $3)), expected $4"; }
 }
 
-for bitrate in 125000 500000 1000000; do
+bitrates="125000 500000 1000000"
+if [ "$VM_KERNEL" = debug ]; then
+	# KASAN and lockdep make the debug kernel too slow to empty the
+	# receive buffers at 1 Mbit/s even with bus time slowed 400 times.
+	bitrates="125000 500000"
+	echo "debug kernel: bursts at $bitrates bit/s only"
+fi
+
+for bitrate in $bitrates; do
 	echo "== $bitrate bit/s"
 	tx0=$(stat can0 tx_packets) rx1=$(stat can1 rx_packets)
 	tx1=$(stat can1 tx_packets) rx0=$(stat can0 rx_packets)
