@@ -88,6 +88,9 @@ struct mcp2510_sim {
 	const char *line_name_ptrs[MCP2510_SIM_LINES];
 
 	struct device *root;
+	/* the tree's description of the controllers, or NULL: see kmod_of.c */
+	struct device_node *of_spi;
+	struct device_node *of_gpio;
 	struct spi_controller *ctlr;
 	const char *chip_name;		/* the SPI modalias: "mcp2510", "mcp2515" */
 	u32 sck_max_hz;			/* the chip's SPI clock limit */
@@ -118,6 +121,10 @@ void mcp2510_sim_irq_miss_edges(struct mcp2510_sim *sim, unsigned int line,
 void mcp2510_sim_irq_reset_counts(struct mcp2510_sim *sim, unsigned int line);
 void mcp2510_sim_irq_describe(struct mcp2510_sim *sim, unsigned int line,
 			      struct mcp2510_sim_line *out);
+
+/* kmod_of.c */
+int mcp2510_sim_of_find(struct mcp2510_sim *sim);
+void mcp2510_sim_of_put(struct mcp2510_sim *sim);
 
 /* kmod_spi.c */
 int mcp2510_sim_spi_register(struct mcp2510_sim *sim, const char *driver,

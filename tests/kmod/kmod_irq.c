@@ -19,6 +19,7 @@
 #include <linux/irq_work.h>
 #include <linux/irqdesc.h>
 #include <linux/irqdomain.h>
+#include <linux/of.h>
 
 #include "kmod.h"
 
@@ -246,6 +247,7 @@ int mcp2510_sim_irq_register(struct mcp2510_sim *sim)
 
 	gc->label = MCP2510_SIM_NAME;
 	gc->parent = sim->root;
+	gc->fwnode = of_fwnode_handle(sim->of_gpio);
 	gc->owner = THIS_MODULE;
 	gc->base = -1;
 	gc->ngpio = sim->nchips * SIM_PIN_COUNT;
@@ -256,8 +258,12 @@ int mcp2510_sim_irq_register(struct mcp2510_sim *sim)
 
 	gpio_irq_chip_set_chip(girq, &line_irq_chip);
 	girq->handler = handle_level_irq;
-	/* as on boards: INT is an open-drain, active-low level output */
-	girq->default_type = IRQ_TYPE_LEVEL_LOW;
+	/*
+	 * As on boards: INT is an open-drain, active-low level output.  A
+	 * device tree gives the trigger in each interrupt specifier instead,
+	 * and gpiolib warns about a default next to one.
+	 */
+	girq->default_type = sim->of_gpio ? IRQ_TYPE_NONE : IRQ_TYPE_LEVEL_LOW;
 
 	return gpiochip_add_data(gc, sim);
 }

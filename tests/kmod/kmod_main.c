@@ -138,13 +138,20 @@ static struct mcp2510_sim *sim_create(void)
 	sim->chip_name = v->name;
 	sim->sck_max_hz = v->sck_max_hz;
 	sim->osc_hz = osc_hz;
+	ret = mcp2510_sim_of_find(sim);
+	if (ret)
+		goto out_free;
 	ret = build_bus(sim, v);
-	if (ret) {
-		kvfree(sim);
-		return ERR_PTR(ret);
-	}
+	if (ret)
+		goto out_put_of;
 	mcp2510_sim_clock_init(sim, time_scale);
 	return sim;
+
+out_put_of:
+	mcp2510_sim_of_put(sim);
+out_free:
+	kvfree(sim);
+	return ERR_PTR(ret);
 }
 
 static int __init mcp2510_sim_init(void)
@@ -187,6 +194,7 @@ out_stop:
 out_unregister_root:
 	root_device_unregister(sim->root);
 out_free:
+	mcp2510_sim_of_put(sim);
 	kvfree(sim);
 	return ret;
 }
@@ -201,6 +209,7 @@ static void __exit mcp2510_sim_exit(void)
 	mcp2510_sim_clock_stop(sim);
 	mcp2510_sim_irq_unregister(sim);
 	root_device_unregister(sim->root);
+	mcp2510_sim_of_put(sim);
 	kvfree(sim);
 }
 

@@ -248,11 +248,15 @@ int mcp2510_sim_spi_register(struct mcp2510_sim *sim, const char *driver,
 	ctlr->max_transfer_size = period_limit;
 	ctlr->max_message_size = period_limit;
 	ctlr->transfer_one_message = transfer_one_message;
+	/* from a device tree, the SPI core adds the devices its nodes name */
+	ctlr->dev.of_node = sim->of_spi;
 
 	ret = spi_register_controller(ctlr);
 	if (ret)
 		goto out_put;
 	sim->ctlr = ctlr;
+	if (sim->of_spi)
+		return 0;
 
 	ret = add_chip_devices(sim, driver, spidev_node);
 	if (ret)
