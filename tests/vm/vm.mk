@@ -45,3 +45,5 @@ vmtest-one:
 
 vm-info:
 	@for k in 6.1 6.12 debug; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
+# The scenario suite on all three kernels is part of make check.
+CHECK_STEPS += vmtest
