@@ -47,3 +47,11 @@ vm-info:
 	@for k in 6.1 6.12 debug; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
 # The scenario suite on all three kernels is part of make check.
 CHECK_STEPS += vmtest
+
+# make demo: boot Debian's 6.1 kernel with two simulated MCP2510s and show
+# ip link, cansend and candump at work.
+.PHONY: demo
+demo: vm-kernel-6.1
+	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS=6.1)
+	@$(VM_DIR)/vm-run --kernel 6.1 --driver mcp2510 --nodes 2 \
+		--variant mcp2510 $(VM_DIR)/demo.sh
