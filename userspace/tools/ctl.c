@@ -45,6 +45,17 @@ static const struct ctl_command *find_command(const char *name)
 	return NULL;
 }
 
+int ctl_on_chip(struct ctl *c, struct mcp2510 *h, ctl_chip_fn job, void *ctx)
+{
+	int ret;
+
+	if (!h)
+		return EXIT_FAIL;
+	ret = job(c, h, ctx);
+	mcp2510_close(h);
+	return ret;
+}
+
 int ctl_bad(struct ctl *c, const char *what, const char *value)
 {
 	cli_error(c->args.err, c->args.prog, "invalid %s '%s'", what, value);

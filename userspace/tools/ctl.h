@@ -15,6 +15,9 @@ struct ctl {
 	int npos;
 };
 
+/* What a subcommand does with the opened chip; @ctx is its own state. */
+typedef int (*ctl_chip_fn)(struct ctl *c, struct mcp2510 *h, void *ctx);
+
 /* A subcommand's own option, handed to its parser. */
 typedef int (*ctl_option_fn)(struct ctl *c, void *ctx, int id,
 			     const char *value);
@@ -36,6 +39,12 @@ struct ctl_command {
 int ctl_parse(struct ctl *c, const struct ctl_command *cmd,
 	      const struct cli_option *own, ctl_option_fn fn, void *ctx,
 	      int min_pos, int max_pos, bool *done);
+
+/*
+ * Run @job on @h and close it.  A NULL @h means its opener failed and
+ * already said why: EXIT_FAIL without running @job.
+ */
+int ctl_on_chip(struct ctl *c, struct mcp2510 *h, ctl_chip_fn job, void *ctx);
 
 /* "bad VALUE for WHAT" as a usage error; returns -1. */
 int ctl_bad(struct ctl *c, const char *what, const char *value);

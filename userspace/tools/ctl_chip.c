@@ -26,6 +26,19 @@ static int parse_plain(struct ctl *c, const struct ctl_command *cmd,
 			 done);
 }
 
+/* A command with no arguments of its own: parse, then @job on the chip. */
+static int run_plain(struct ctl *c, const struct ctl_command *cmd,
+		     ctl_chip_fn job)
+{
+	bool done;
+	int ret = parse_plain(c, cmd, 0, 0, &done);
+
+	if (done)
+		return ret;
+	return ctl_on_chip(c, cli_device_open(&c->dev, &c->args, true), job,
+			   NULL);
+}
+
 static const char *mode_name(uint8_t canstat)
 {
 	static const char *const names[] = {
@@ -50,12 +63,13 @@ static void print_state(struct ctl *c, enum can_state st,
 
 /* ---- info ---- */
 
-static int info_print(struct ctl *c, struct mcp2510 *h)
+static int info_print(struct ctl *c, struct mcp2510 *h, void *ctx)
 {
 	uint8_t regs[MCP2510_REGS_LEN];
 	struct can_berr_counter bec;
 	enum can_state st;
 
+	(void)ctx;
 	if (mcp2510_read_regs(h, regs) || mcp2510_state(h, &st, &bec)) {
 		cli_error_errno(&c->args, "reading the chip");
 		return EXIT_FAIL;
@@ -72,18 +86,7 @@ static int info_print(struct ctl *c, struct mcp2510 *h)
 
 static int info_run(struct ctl *c)
 {
-	struct mcp2510 *h;
-	bool done;
-	int ret = parse_plain(c, &ctl_info, 0, 0, &done);
-
-	if (done)
-		return ret;
-	h = cli_device_open(&c->dev, &c->args, true);
-	if (!h)
-		return EXIT_FAIL;
-	ret = info_print(c, h);
-	mcp2510_close(h);
-	return ret;
+	return run_plain(c, &ctl_info, info_print);
 }
 
 const struct ctl_command ctl_info = {
@@ -99,24 +102,19 @@ const struct ctl_command ctl_info = {
 
 /* ---- reset ---- */
 
-static int reset_run(struct ctl *c)
+static int reset_chip(struct ctl *c, struct mcp2510 *h, void *ctx)
 {
-	struct mcp2510 *h;
-	bool done;
-	int ret = parse_plain(c, &ctl_reset, 0, 0, &done);
-
-	if (done)
-		return ret;
-	h = cli_device_open(&c->dev, &c->args, true);
-	if (!h)
-		return EXIT_FAIL;
-	ret = 0;
+	(void)ctx;
 	if (mcp2510_reset(h)) {
 		cli_error_errno(&c->args, "reset");
-		ret = EXIT_FAIL;
+		return EXIT_FAIL;
 	}
-	mcp2510_close(h);
-	return ret;
+	return 0;
+}
+
+static int reset_run(struct ctl *c)
+{
+	return run_plain(c, &ctl_reset, reset_chip);
 }
 
 const struct ctl_command ctl_reset = {
@@ -178,12 +176,13 @@ const struct ctl_command ctl_bittiming = {
 
 /* ---- regs ---- */
 
-static int regs_print(struct ctl *c, struct mcp2510 *h)
+static int regs_print(struct ctl *c, struct mcp2510 *h, void *ctx)
 {
 	uint8_t regs[MCP2510_REGS_LEN];
 	char name[MCP2510_REG_NAME_MAX];
 	unsigned int i;
 
+	(void)ctx;
 	if (mcp2510_read_regs(h, regs)) {
 		cli_error_errno(&c->args, "reading the registers");
 		return EXIT_FAIL;
@@ -197,18 +196,7 @@ static int regs_print(struct ctl *c, struct mcp2510 *h)
 
 static int regs_run(struct ctl *c)
 {
-	struct mcp2510 *h;
-	bool done;
-	int ret = parse_plain(c, &ctl_regs, 0, 0, &done);
-
-	if (done)
-		return ret;
-	h = cli_device_open(&c->dev, &c->args, true);
-	if (!h)
-		return EXIT_FAIL;
-	ret = regs_print(c, h);
-	mcp2510_close(h);
-	return ret;
+	return run_plain(c, &ctl_regs, regs_print);
 }
 
 const struct ctl_command ctl_regs = {
@@ -251,10 +239,22 @@ static void filters_print(struct ctl *c, const struct mcp2510_hw_filters *f)
 			fprintf(c->out, "%s\n", line);
 }
 
+/* Program @ctx's filters, then print what the chip holds. */
+static int filters_apply(struct ctl *c, struct mcp2510 *h, void *ctx)
+{
+	struct mcp2510_hw_filters *f = ctx;
+
+	if (mcp2510_set_filters(h, f) || mcp2510_get_filters(h, f)) {
+		cli_error_errno(&c->args, "setting the filters");
+		return EXIT_FAIL;
+	}
+	filters_print(c, f);
+	return 0;
+}
+
 static int filter_run(struct ctl *c)
 {
 	struct mcp2510_hw_filters f;
-	struct mcp2510 *h;
 	bool done;
 	int i, ret = parse_plain(c, &ctl_filter, 0, CTL_MAX_ARGS, &done);
 
@@ -264,18 +264,8 @@ static int filter_run(struct ctl *c)
 	for (i = 0; i < c->npos; i++)
 		if (filter_assign(c, &f, c->pos[i]))
 			return EXIT_USAGE;
-	h = cli_device_open(&c->dev, &c->args, false);
-	if (!h)
-		return EXIT_FAIL;
-	ret = 0;
-	if (mcp2510_set_filters(h, &f) || mcp2510_get_filters(h, &f)) {
-		cli_error_errno(&c->args, "setting the filters");
-		ret = EXIT_FAIL;
-	} else {
-		filters_print(c, &f);
-	}
-	mcp2510_close(h);
-	return ret;
+	return ctl_on_chip(c, cli_device_open(&c->dev, &c->args, false),
+			   filters_apply, &f);
 }
 
 const struct ctl_command ctl_filter = {
@@ -297,28 +287,23 @@ const struct ctl_command ctl_filter = {
 
 /* ---- state ---- */
 
-static int state_run(struct ctl *c)
+static int state_read(struct ctl *c, struct mcp2510 *h, void *ctx)
 {
 	struct can_berr_counter bec;
 	enum can_state st;
-	struct mcp2510 *h;
-	bool done;
-	int ret = parse_plain(c, &ctl_state, 0, 0, &done);
 
-	if (done)
-		return ret;
-	h = cli_device_open(&c->dev, &c->args, true);
-	if (!h)
-		return EXIT_FAIL;
-	ret = 0;
+	(void)ctx;
 	if (mcp2510_state(h, &st, &bec)) {
 		cli_error_errno(&c->args, "reading the state");
-		ret = EXIT_FAIL;
-	} else {
-		print_state(c, st, &bec);
+		return EXIT_FAIL;
 	}
-	mcp2510_close(h);
-	return ret;
+	print_state(c, st, &bec);
+	return 0;
+}
+
+static int state_run(struct ctl *c)
+{
+	return run_plain(c, &ctl_state, state_read);
 }
 
 const struct ctl_command ctl_state = {

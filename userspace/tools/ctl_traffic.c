@@ -36,6 +36,7 @@ struct traffic_opts {
 	const char *label;
 	struct mcp2510_hw_filters filters;
 	bool filtered;
+	struct can_frame frames[CTL_MAX_ARGS];	/* send's, one per argument */
 };
 
 static int traffic_option(struct ctl *c, void *ctx, int id, const char *value)
@@ -89,7 +90,7 @@ static struct mcp2510 *open_up(struct ctl *c, const struct traffic_opts *t)
 
 	if (!h)
 		return NULL;
-	if (t && t->filtered && mcp2510_set_filters(h, &t->filters)) {
+	if (t->filtered && mcp2510_set_filters(h, &t->filters)) {
 		cli_error_errno(&c->args, "setting the filters");
 		goto out_close;
 	}
@@ -141,17 +142,17 @@ static int send_failed(struct ctl *c, struct mcp2510 *h, const char *why)
 }
 
 /* Queue every frame, then wait until the chip reports each one sent. */
-static int send_all(struct ctl *c, struct mcp2510 *h,
-		    const struct can_frame *frames, int n, int timeout_ms)
+static int send_all(struct ctl *c, struct mcp2510 *h, void *ctx)
 {
+	const struct traffic_opts *t = ctx;
 	struct mcp2510_event ev;
 	int i, done = 0;
 
-	for (i = 0; i < n; i++)
-		if (mcp2510_send(h, &frames[i], 0))
+	for (i = 0; i < c->npos; i++)
+		if (mcp2510_send(h, &t->frames[i], 0))
 			return send_failed(c, h, "no transmit buffer became free");
-	while (done < n) {
-		if (mcp2510_recv(h, &ev, timeout_ms))
+	while (done < c->npos) {
+		if (mcp2510_recv(h, &ev, t->timeout_ms))
 			return send_failed(c, h, "not acknowledged in time");
 		if (ev.type == MCP2510_EVENT_TX_ABORTED)
 			return send_failed(c, h, "frame aborted");
@@ -163,9 +164,7 @@ static int send_all(struct ctl *c, struct mcp2510 *h,
 
 static int send_run(struct ctl *c)
 {
-	struct can_frame frames[CTL_MAX_ARGS];
 	struct traffic_opts t;
-	struct mcp2510 *h;
 	bool done;
 	int ret;
 
@@ -174,14 +173,9 @@ static int send_run(struct ctl *c)
 			CTL_MAX_ARGS, &done);
 	if (done)
 		return ret;
-	if (parse_frames(c, frames))
+	if (parse_frames(c, t.frames))
 		return EXIT_USAGE;
-	h = open_up(c, &t);
-	if (!h)
-		return EXIT_FAIL;
-	ret = send_all(c, h, frames, c->npos, t.timeout_ms);
-	mcp2510_close(h);
-	return ret;
+	return ctl_on_chip(c, open_up(c, &t), send_all, &t);
 }
 
 const struct ctl_command ctl_send = {
@@ -223,10 +217,18 @@ static int dump_frames(struct ctl *c, struct mcp2510 *h,
 	return 0;
 }
 
+/* Even a failed capture says whether the ring dropped events. */
+static int dump_capture(struct ctl *c, struct mcp2510 *h, void *ctx)
+{
+	int ret = dump_frames(c, h, ctx);
+
+	warn_ring_overflows(c, h);
+	return ret;
+}
+
 static int dump_run(struct ctl *c)
 {
 	struct traffic_opts t;
-	struct mcp2510 *h;
 	bool done;
 	int ret;
 
@@ -236,13 +238,7 @@ static int dump_run(struct ctl *c)
 			&done);
 	if (done)
 		return ret;
-	h = open_up(c, &t);
-	if (!h)
-		return EXIT_FAIL;
-	ret = dump_frames(c, h, &t);
-	warn_ring_overflows(c, h);
-	mcp2510_close(h);
-	return ret;
+	return ctl_on_chip(c, open_up(c, &t), dump_capture, &t);
 }
 
 const struct ctl_command ctl_dump = {
@@ -315,13 +311,14 @@ static int loop_one(struct ctl *c, struct mcp2510 *h,
 	return -1;
 }
 
-static int selftest_loop(struct ctl *c, struct mcp2510 *h, int timeout_ms)
+static int selftest_loop(struct ctl *c, struct mcp2510 *h, void *ctx)
 {
+	const struct traffic_opts *t = ctx;
 	struct can_frame frames[32];
 	unsigned int i, n = selftest_frames(frames, 32), good = 0;
 
 	for (i = 0; i < n; i++)
-		if (!loop_one(c, h, &frames[i], timeout_ms))
+		if (!loop_one(c, h, &frames[i], t->timeout_ms))
 			good++;
 	fprintf(c->out, "selftest: %u of %u frames came back identical\n%s\n",
 		good, n, good == n ? "PASS" : "FAIL");
@@ -331,7 +328,6 @@ static int selftest_loop(struct ctl *c, struct mcp2510 *h, int timeout_ms)
 static int selftest_run(struct ctl *c)
 {
 	struct traffic_opts t;
-	struct mcp2510 *h;
 	bool done;
 	int ret;
 
@@ -341,12 +337,8 @@ static int selftest_run(struct ctl *c)
 	if (done)
 		return ret;
 	c->dev.ctrlmode |= CAN_CTRLMODE_LOOPBACK;
-	h = open_up(c, NULL);
-	if (!h)
-		return EXIT_FAIL;
-	ret = selftest_loop(c, h, t.timeout_ms);
-	mcp2510_close(h);
-	return ret;
+	/* no --filter here, so t applies none */
+	return ctl_on_chip(c, open_up(c, &t), selftest_loop, &t);
 }
 
 const struct ctl_command ctl_selftest = {
