@@ -119,6 +119,9 @@ userspace-check: userspace
 
 CHECK_STEPS += userspace-check
 
+# The rig copies build/userspace/{bin,lib} into the guest: build them first.
+VMTEST_DEPS += userspace
+
 # ---- the cmocka suites of tests/unit/unit.mk ----------------------------
 # Source lists the suites' lines in unit.mk name.  Their sources need the
 # userspace include paths, and the transport suite links with the system
