@@ -33,17 +33,6 @@ void mcp2510_filters_default(struct mcp2510_filters *f)
 	f->rollover = true;
 }
 
-static int hex_value(char c)
-{
-	if (c >= '0' && c <= '9')
-		return c - '0';
-	if (c >= 'a' && c <= 'f')
-		return c - 'a' + 10;
-	if (c >= 'A' && c <= 'F')
-		return c - 'A' + 10;
-	return -1;
-}
-
 /* sysfs hands over what echo wrote, newline included */
 static size_t strip_newline(const char *s, size_t len)
 {
@@ -66,7 +55,7 @@ int mcp2510_filter_id_parse(const char *s, size_t len,
 	if (!len || len > HEX_DIGITS_MAX)
 		return -EINVAL;
 	for (i = 0; i < len; i++) {
-		int digit = hex_value(s[i]);
+		int digit = mcp2510_hex_digit(s[i]);
 
 		if (digit < 0)
 			return -EINVAL;

@@ -89,6 +89,22 @@ struct mcp2510_filters {
 
 /* Accept every frame: masks 0, both buffers filtered, rollover on. */
 void mcp2510_filters_default(struct mcp2510_filters *f);
+/*
+ * Value of one hex digit, either case, or -1.  Inline so that text
+ * parsers outside the core need not link it, and free of <ctype.h> for
+ * the kernel build.
+ */
+static inline int mcp2510_hex_digit(char c)
+{
+	if (c >= '0' && c <= '9')
+		return c - '0';
+	if (c >= 'a' && c <= 'f')
+		return c - 'a' + 10;
+	if (c >= 'A' && c <= 'F')
+		return c - 'A' + 10;
+	return -1;
+}
+
 /* Parse "7ff" or "1fffffffx" (sysfs and CLI syntax); -EINVAL if bad. */
 int mcp2510_filter_id_parse(const char *s, size_t len,
 			    struct mcp2510_filter_id *out);

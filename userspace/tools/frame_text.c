@@ -5,20 +5,10 @@
 #include <string.h>
 
 #include "frame_text.h"
+#include "mcp2510_core.h"
 
 #define SFF_DIGITS	3
 #define EFF_DIGITS	8
-
-static int hex_digit(char c)
-{
-	if (c >= '0' && c <= '9')
-		return c - '0';
-	if (c >= 'a' && c <= 'f')
-		return c - 'a' + 10;
-	if (c >= 'A' && c <= 'F')
-		return c - 'A' + 10;
-	return -1;
-}
 
 static int fail(const char **why, const char *what)
 {
@@ -35,7 +25,7 @@ static int parse_id(const char *text, size_t digits, canid_t *id,
 	if (digits != SFF_DIGITS && digits != EFF_DIGITS)
 		return fail(why, "identifier must be 3 (standard) or 8 (extended) hex digits");
 	for (i = 0; i < digits; i++) {
-		int d = hex_digit(text[i]);
+		int d = mcp2510_hex_digit(text[i]);
 
 		if (d < 0)
 			return fail(why, "identifier is not hexadecimal");
@@ -80,8 +70,8 @@ static int parse_data(const char *p, struct can_frame *cf, const char **why)
 			p++;
 			continue;
 		}
-		hi = hex_digit(p[0]);
-		lo = hi < 0 ? -1 : hex_digit(p[1]);
+		hi = mcp2510_hex_digit(p[0]);
+		lo = hi < 0 ? -1 : mcp2510_hex_digit(p[1]);
 		if (lo < 0)
 			return fail(why, "data must be pairs of hex digits");
 		if (cf->len == CAN_MAX_DLEN)
