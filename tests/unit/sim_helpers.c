@@ -1,5 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0
 #include <string.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
 
 #include "sim_helpers.h"
 
@@ -163,12 +168,24 @@ void simh_node_setup(struct sim_bus *bus, struct sim_chip *chip,
 	simh_write(chip, MCP2510_REG_CNF3, cnf3);
 }
 
-void simh_node_up(struct sim_bus *bus, struct sim_chip *chip,
-		  enum sim_variant variant)
+void simh_node_setup_125k(struct sim_bus *bus, struct sim_chip *chip,
+			  enum sim_variant variant)
 {
 	simh_node_setup(bus, chip, variant, SIMH_CNF1_125K, SIMH_CNF2_125K,
 			SIMH_CNF3_125K);
+}
+
+void simh_node_up(struct sim_bus *bus, struct sim_chip *chip,
+		  enum sim_variant variant)
+{
+	simh_node_setup_125k(bus, chip, variant);
 	simh_set_mode(chip, MCP2510_MODE_NORMAL);
+}
+
+int simh_teardown(void **state)
+{
+	test_free(*state);
+	return 0;
 }
 
 void simh_run_idle(struct sim_bus *bus, u64 max_ns)

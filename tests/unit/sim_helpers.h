@@ -43,9 +43,15 @@ void simh_read_rx(struct sim_chip *chip, unsigned int n, struct can_frame *cf,
 /* init + attach + start-up + reset + bit timing; stays in configuration mode */
 void simh_node_setup(struct sim_bus *bus, struct sim_chip *chip,
 		     enum sim_variant variant, u8 cnf1, u8 cnf2, u8 cnf3);
+/* simh_node_setup() at AN739's 125 kbit/s (SIMH_CNF*_125K) */
+void simh_node_setup_125k(struct sim_bus *bus, struct sim_chip *chip,
+			  enum sim_variant variant);
 /* ... and then normal mode: the usual two-line start of a test */
 void simh_node_up(struct sim_bus *bus, struct sim_chip *chip,
 		  enum sim_variant variant);
+
+/* cmocka teardown of a fixture the setup made with test_calloc() */
+int simh_teardown(void **state);
 
 /* advance in steps until the bus is idle with nothing pending, at most max_ns */
 void simh_run_idle(struct sim_bus *bus, u64 max_ns);

@@ -39,8 +39,7 @@ static struct rig *rig_new(unsigned int n, enum sim_variant variant)
 	sim_bus_init(&r->bus);
 	simh_log_attach(&r->bus, &r->log);
 	for (i = 0; i < n; i++) {
-		simh_node_setup(&r->bus, &r->chip[i], variant, SIMH_CNF1_125K,
-				SIMH_CNF2_125K, SIMH_CNF3_125K);
+		simh_node_setup_125k(&r->bus, &r->chip[i], variant);
 		accept_all(&r->chip[i]);
 		assert_int_equal(simh_set_mode(&r->chip[i], MCP2510_MODE_NORMAL), 0);
 	}
@@ -68,12 +67,6 @@ static int setup_two(void **state)
 static int setup_three(void **state)
 {
 	*state = rig_new(3, SIM_MCP2510);
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	test_free(*state);
 	return 0;
 }
 
@@ -645,19 +638,19 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_an739_minimal_configuration),
-		cmocka_unit_test_setup_teardown(test_exchange_all_frame_kinds, setup_two, teardown),
-		cmocka_unit_test_setup_teardown(test_arbitration_three_chips, setup_three, teardown),
-		cmocka_unit_test_setup_teardown(test_arbitration_frame_types, setup_three, teardown),
-		cmocka_unit_test_setup_teardown(test_tx_priority, setup_one, teardown),
-		cmocka_unit_test_setup_teardown(test_one_shot, setup_one_2515, teardown),
-		cmocka_unit_test_setup_teardown(test_abort_all, setup_one, teardown),
-		cmocka_unit_test_setup_teardown(test_rx_overflow_and_rollover, setup_two, teardown),
-		cmocka_unit_test_setup_teardown(test_rx_status_rollover, setup_one_2515, teardown),
-		cmocka_unit_test_setup_teardown(test_frame_timing, setup_two, teardown),
-		cmocka_unit_test_setup_teardown(test_phantom_node, setup_one, teardown),
-		cmocka_unit_test_setup_teardown(test_loopback, setup_two, teardown),
-		cmocka_unit_test_setup_teardown(test_listen_only, setup_two, teardown),
-		cmocka_unit_test_setup_teardown(test_interrupt_driven_receive, setup_one, teardown),
+		cmocka_unit_test_setup_teardown(test_exchange_all_frame_kinds, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_arbitration_three_chips, setup_three, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_arbitration_frame_types, setup_three, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_tx_priority, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_one_shot, setup_one_2515, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_abort_all, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_rx_overflow_and_rollover, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_rx_status_rollover, setup_one_2515, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_frame_timing, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_phantom_node, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_loopback, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_listen_only, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_interrupt_driven_receive, setup_one, simh_teardown),
 	};
 
 	return cmocka_run_group_tests_name("sim_bus", tests, NULL, NULL);

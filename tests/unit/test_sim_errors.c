@@ -34,13 +34,11 @@ static struct rig *rig_new(bool two)
 
 	sim_bus_init(&r->bus);
 	simh_log_attach(&r->bus, &r->log);
-	simh_node_setup(&r->bus, &r->a, SIM_MCP2510, SIMH_CNF1_125K,
-			SIMH_CNF2_125K, SIMH_CNF3_125K);
+	simh_node_setup_125k(&r->bus, &r->a, SIM_MCP2510);
 	accept_all(&r->a);
 	simh_set_mode(&r->a, MCP2510_MODE_NORMAL);
 	if (two) {
-		simh_node_setup(&r->bus, &r->b, SIM_MCP2510, SIMH_CNF1_125K,
-				SIMH_CNF2_125K, SIMH_CNF3_125K);
+		simh_node_setup_125k(&r->bus, &r->b, SIM_MCP2510);
 		accept_all(&r->b);
 		simh_set_mode(&r->b, MCP2510_MODE_NORMAL);
 	}
@@ -56,12 +54,6 @@ static int setup_one(void **state)
 static int setup_two(void **state)
 {
 	*state = rig_new(true);
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	test_free(*state);
 	return 0;
 }
 
@@ -237,8 +229,7 @@ static void test_bit_rate_mismatch(void **state)
 	(void)state;
 	sim_bus_init(&bus);
 	simh_log_attach(&bus, &log);
-	simh_node_setup(&bus, &a, SIM_MCP2510, SIMH_CNF1_125K, SIMH_CNF2_125K,
-			SIMH_CNF3_125K);
+	simh_node_setup_125k(&bus, &a, SIM_MCP2510);
 	simh_node_setup(&bus, &b, SIM_MCP2510, SIMH_CNF1_250K, SIMH_CNF2_125K,
 			SIMH_CNF3_125K);
 	assert_int_equal(sim_chip_bitrate(&b), 250000);
@@ -361,13 +352,13 @@ static void test_missing_ack(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test_setup_teardown(test_lone_node_goes_error_passive, setup_one, teardown),
-		cmocka_unit_test_setup_teardown(test_bus_off_and_recovery, setup_two, teardown),
-		cmocka_unit_test_setup_teardown(test_bus_off_recovery_on_busy_bus, setup_one, teardown),
+		cmocka_unit_test_setup_teardown(test_lone_node_goes_error_passive, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_bus_off_and_recovery, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_bus_off_recovery_on_busy_bus, setup_one, simh_teardown),
 		cmocka_unit_test(test_bit_rate_mismatch),
-		cmocka_unit_test_setup_teardown(test_bit_rate_tolerance, setup_one, teardown),
-		cmocka_unit_test_setup_teardown(test_receive_error_counter, setup_one, teardown),
-		cmocka_unit_test_setup_teardown(test_missing_ack, setup_two, teardown),
+		cmocka_unit_test_setup_teardown(test_bit_rate_tolerance, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_receive_error_counter, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_missing_ack, setup_two, simh_teardown),
 	};
 
 	return cmocka_run_group_tests_name("sim_errors", tests, NULL, NULL);

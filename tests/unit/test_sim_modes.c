@@ -26,8 +26,7 @@ static struct rig *rig_new(enum sim_variant variant)
 	struct rig *r = test_calloc(1, sizeof(*r));
 
 	sim_bus_init(&r->bus);
-	simh_node_setup(&r->bus, &r->a, variant, SIMH_CNF1_125K,
-			SIMH_CNF2_125K, SIMH_CNF3_125K);
+	simh_node_setup_125k(&r->bus, &r->a, variant);
 	simh_node_up(&r->bus, &r->b, SIM_MCP2510);
 	return r;
 }
@@ -41,12 +40,6 @@ static int setup_2510(void **state)
 static int setup_2515(void **state)
 {
 	*state = rig_new(SIM_MCP2515);
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	test_free(*state);
 	return 0;
 }
 
@@ -335,14 +328,14 @@ static void test_loopback_alone(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
-		cmocka_unit_test_setup_teardown(test_slow_mode_change, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_mode_change_waits_for_frame, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_sleep_and_wake_on_bus, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_wake_by_spi_slow, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_filters_and_rxm, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_data_byte_filter_mcp2515, setup_2515, teardown),
-		cmocka_unit_test_setup_teardown(test_no_data_byte_filter_mcp2510, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_loopback_alone, setup_2510, teardown),
+		cmocka_unit_test_setup_teardown(test_slow_mode_change, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_mode_change_waits_for_frame, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_sleep_and_wake_on_bus, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_wake_by_spi_slow, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_filters_and_rxm, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_data_byte_filter_mcp2515, setup_2515, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_no_data_byte_filter_mcp2510, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_loopback_alone, setup_2510, simh_teardown),
 	};
 
 	return cmocka_run_group_tests_name("sim_modes", tests, NULL, NULL);

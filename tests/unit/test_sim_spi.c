@@ -22,8 +22,7 @@ static struct rig *rig_new(enum sim_variant variant)
 	struct rig *r = test_calloc(1, sizeof(*r));
 
 	sim_bus_init(&r->bus);
-	simh_node_setup(&r->bus, &r->chip, variant, SIMH_CNF1_125K,
-			SIMH_CNF2_125K, SIMH_CNF3_125K);
+	simh_node_setup_125k(&r->bus, &r->chip, variant);
 	return r;
 }
 
@@ -36,12 +35,6 @@ static int setup_2510(void **state)
 static int setup_2515(void **state)
 {
 	*state = rig_new(SIM_MCP2515);
-	return 0;
-}
-
-static int teardown(void **state)
-{
-	test_free(*state);
 	return 0;
 }
 
@@ -592,23 +585,23 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_reset_values),
-		cmocka_unit_test_setup_teardown(test_startup_after_reset, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_sequential_read_wraps, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_canstat_canctrl_mirrors, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_write_protection, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_bit_modify, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_read_status_repeats, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_mcp2515_instructions_on_mcp2510, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_mcp2515_instructions, setup_2515, teardown),
-		cmocka_unit_test_setup_teardown(test_malformed_spi, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_tx_buffer_locked, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_txrts_pins, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_int_pin_and_icod, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_rxbf_pins, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_power_loss, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_spi_corruption, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_invalid_reqop_ignored, setup_2510, teardown),
-		cmocka_unit_test_setup_teardown(test_bit_rate, setup_2510, teardown),
+		cmocka_unit_test_setup_teardown(test_startup_after_reset, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_sequential_read_wraps, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_canstat_canctrl_mirrors, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_write_protection, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_bit_modify, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_read_status_repeats, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_mcp2515_instructions_on_mcp2510, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_mcp2515_instructions, setup_2515, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_malformed_spi, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_tx_buffer_locked, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_txrts_pins, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_int_pin_and_icod, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_rxbf_pins, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_power_loss, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_spi_corruption, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_invalid_reqop_ignored, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_bit_rate, setup_2510, simh_teardown),
 	};
 
 	return cmocka_run_group_tests_name("sim_spi", tests, NULL, NULL);
