@@ -49,3 +49,29 @@ expect_lines() {
 	_got=$(wc -l <"$1")
 	[ "$_got" -eq "$2" ] || { cat "$1" >&2; fail "$1: $_got lines, expected $2"; }
 }
+
+# errors_start IF FILE: record IF's error frames into FILE (until errors_stop).
+errors_start() {
+	_before=$(grep -c "^ *$1 " /proc/net/can/rcvlist_err || true)
+	# 0~0 matches no data frame; the error mask lets every error frame in.
+	candump "$1,0~0,#FFFFFFFF" >"$2" &
+	ERR_PID=$!
+	while [ "$(grep -c "^ *$1 " /proc/net/can/rcvlist_err || true)" -le "$_before" ]; do
+		sleep 0.05
+	done
+}
+errors_stop() {
+	kill "$ERR_PID"
+	wait "$ERR_PID" || true
+}
+
+# error_seen FILE CLASS [CTRL]: FILE (from errors_start) holds an error
+# frame with a CLASS bit in its id and, if given, all CTRL bits in data[1].
+# (Debian 12's candump -e cannot decode frames that carry CAN_ERR_CNT.)
+error_seen() {
+	while read -r _ id _ _ d1 _; do
+		[ $((0x$id & $2)) -ne 0 ] || continue
+		[ $((0x$d1 & ${3:-0})) -eq $((${3:-0})) ] && return 0
+	done <"$1"
+	return 1
+}

@@ -14,31 +14,6 @@ sim=/sys/kernel/debug/mcp2510-sim
 
 stat() { cat "/sys/class/net/$1/statistics/$2"; }
 counter() { awk -v n="$2" '$1 == n { print $2 }' "$sim/chip$1/counters"; }
-# errors_start IF FILE: record IF's error frames into FILE (until errors_stop).
-errors_start() {
-	_before=$(grep -c "^ *$1 " /proc/net/can/rcvlist_err || true)
-	# 0~0 matches no data frame; the error mask lets every error frame in.
-	candump "$1,0~0,#FFFFFFFF" >"$2" &
-	ERR_PID=$!
-	while [ "$(grep -c "^ *$1 " /proc/net/can/rcvlist_err || true)" -le "$_before" ]; do
-		sleep 0.05
-	done
-}
-errors_stop() {
-	kill "$ERR_PID"
-	wait "$ERR_PID" || true
-}
-
-# error_seen FILE CLASS [CTRL]: FILE (from errors_start) holds an error
-# frame with a CLASS bit in its id and, if given, all CTRL bits in data[1].
-# (Debian 12's candump -e cannot decode frames that carry CAN_ERR_CNT.)
-error_seen() {
-	while read -r _ id _ _ d1 _; do
-		[ $((0x$id & $2)) -ne 0 ] || continue
-		[ $((0x$d1 & ${3:-0})) -eq $((${3:-0})) ] && return 0
-	done <"$1"
-	return 1
-}
 CAN_ERR_CRTL=0x4 CAN_ERR_CRTL_RX_OVERFLOW=0x01
 
 uptime_s() { cut -d. -f1 /proc/uptime; }
