@@ -122,6 +122,7 @@ struct mcp2510_counters {
 	u32 warnings, passives, bus_offs, restarts;
 	u32 irq_loops;			/* passes through the interrupt loop */
 	u32 irq_storms;			/* loops stopped by the bound */
+	u32 recoveries;			/* re-initialised after a health check */
 };
 
 /*
@@ -272,6 +273,20 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
  * the next call read them again rather than deliver them twice.
  */
 int mcp2510_irq_handle(struct mcp2510_chip *chip);
+
+/* ---- health (see health.c) ---- */
+/*
+ * Read back the mode, CNF1-3 and CANINTE (two transfers) and compare them
+ * with what mcp2510_start() programmed: 0 when they agree (or the chip is
+ * not started), -EBADMSG when the chip reset itself or reads garbage.
+ */
+int mcp2510_health_check(struct mcp2510_chip *chip);
+/*
+ * mcp2510_restart() after a failed health check, counted in
+ * counters.recoveries: frames in the TX buffers are given up (tx_aborted),
+ * the chip is reset and programmed again with the same settings.
+ */
+int mcp2510_recover(struct mcp2510_chip *chip);
 
 /* ---- state, dump, pins ---- */
 int mcp2510_berr_counter(struct mcp2510_chip *chip,

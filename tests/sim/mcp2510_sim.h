@@ -98,13 +98,28 @@ struct sim_counters {
 	u64 bus_off;		/* entries into bus-off */
 };
 
+/* What a corrupted transfer returns on MISO. */
+enum sim_corrupt_kind {
+	SIM_CORRUPT_FLIP,	/* the chip's answer with spi_corrupt_xor's bits flipped */
+	SIM_CORRUPT_FIXED,	/* spi_corrupt_byte in every byte: a shorted line */
+	SIM_CORRUPT_RANDOM,	/* pseudo-random bytes: a floating or noisy line */
+};
+
+/* spi_corrupt value that never counts down: garbage until set to 0 */
+#define SIM_CORRUPT_FOREVER	U32_MAX
+
 /*
  * Per-chip faults.  Write the fields directly (sim_chip_faults()); the
- * model decrements spi_corrupt as it uses it up.
+ * model decrements spi_corrupt as it uses it up.  After changing int_stuck
+ * call sim_chip_refresh_pins(), so the pin follows at once.
  */
 struct sim_chip_faults {
-	u32 spi_corrupt;	/* the next N transfers return MISO with bits flipped */
+	u32 spi_corrupt;	/* the next N transfers return garbage on MISO */
+	enum sim_corrupt_kind spi_corrupt_kind;
 	u8 spi_corrupt_xor;	/* which bits flip in every MISO byte; 0 means 0xa5 */
+	u8 spi_corrupt_byte;	/* SIM_CORRUPT_FIXED's byte */
+	u32 spi_corrupt_seed;	/* SIM_CORRUPT_RANDOM's state; 0 starts a fixed sequence */
+	bool int_stuck;		/* INT held low whatever CANINTE and CANINTF say */
 	u64 wake_delay_ns;	/* "slow wake": extra time from wake-up cause to listen-only */
 	u64 mode_delay_ns;	/* "slow mode change": REQOP write to CANSTAT.OPMOD */
 };
@@ -232,6 +247,13 @@ void sim_chip_set_pin_cb(struct sim_chip *chip,
 void sim_chip_set_rts(struct sim_chip *chip, unsigned int n, bool level);
 /* Power loss: MISO reads 0xff, pins float high.  Power on: reset state and start-up. */
 void sim_chip_power(struct sim_chip *chip, bool on);
+/*
+ * A pulse on the RESET pin (a brown-out, a glitch): the same as the RESET
+ * instruction, registers to their defaults, configuration mode, start-up.
+ */
+void sim_chip_reset_pin(struct sim_chip *chip);
+/* Bring the pins up to date after a change of faults that drive them. */
+void sim_chip_refresh_pins(struct sim_chip *chip);
 const struct sim_counters *sim_chip_counters(const struct sim_chip *chip);
 struct sim_chip_faults *sim_chip_faults(struct sim_chip *chip);
 

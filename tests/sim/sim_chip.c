@@ -13,6 +13,7 @@
 #define SIM_ROW_CANSTAT		0x0e	/* CANSTAT answers at 0xXe of every row */
 #define SIM_ROW_CANCTRL		0x0f	/* CANCTRL answers at 0xXf of every row */
 #define SIM_DEFAULT_CORRUPT	0xa5
+#define SIM_CORRUPT_SEED	0x2545f491u	/* any non-zero xorshift state */
 #define SIM_OSC_MIN		1000U
 #define SIM_OSC_MAX		100000000U
 
@@ -815,6 +816,8 @@ static bool sim_chip_pin_level(const struct sim_chip *chip, enum sim_pin pin)
 	u8 bfp = chip->regs[MCP2510_REG_BFPCTRL];
 	unsigned int n;
 
+	if (pin == SIM_PIN_INT && chip->faults.int_stuck)
+		return false;	/* shorted to ground: not even power loss helps */
 	if (!chip->powered)
 		return true;	/* nothing drives the pins; pull-ups win */
 	if (pin == SIM_PIN_INT)
@@ -1067,17 +1070,42 @@ static bool sim_spi_execute(struct sim_chip *chip, const u8 *tx, u8 *rx,
 	return false;
 }
 
+/* xorshift32 (Marsaglia): cheap, and the same bytes on every run */
+static u8 sim_corrupt_random(struct sim_chip_faults *f)
+{
+	u32 x = f->spi_corrupt_seed ? f->spi_corrupt_seed : SIM_CORRUPT_SEED;
+
+	x ^= x << 13;
+	x ^= x >> 17;
+	x ^= x << 5;
+	f->spi_corrupt_seed = x;
+	return x >> 24;
+}
+
+static u8 sim_corrupt_byte(struct sim_chip_faults *f, u8 answer)
+{
+	switch (f->spi_corrupt_kind) {
+	case SIM_CORRUPT_FIXED:
+		return f->spi_corrupt_byte;
+	case SIM_CORRUPT_RANDOM:
+		return sim_corrupt_random(f);
+	default:
+		return answer ^ (f->spi_corrupt_xor ? f->spi_corrupt_xor :
+				 SIM_DEFAULT_CORRUPT);
+	}
+}
+
 static void sim_spi_corrupt(struct sim_chip *chip, u8 *rx, size_t len)
 {
-	u8 flip = chip->faults.spi_corrupt_xor ? chip->faults.spi_corrupt_xor :
-		  SIM_DEFAULT_CORRUPT;
+	struct sim_chip_faults *f = &chip->faults;
 	size_t i;
 
-	if (!chip->faults.spi_corrupt)
+	if (!f->spi_corrupt)
 		return;
-	chip->faults.spi_corrupt--;
+	if (f->spi_corrupt != SIM_CORRUPT_FOREVER)
+		f->spi_corrupt--;
 	for (i = 0; rx && i < len; i++)
-		rx[i] ^= flip;
+		rx[i] = sim_corrupt_byte(f, rx[i]);
 }
 
 void sim_chip_spi(struct sim_chip *chip, const u8 *tx, u8 *rx, size_t len)
@@ -1125,6 +1153,19 @@ void sim_chip_power(struct sim_chip *chip, bool on)
 		sim_chip_reset(chip);
 	else
 		memset(&chip->tx, 0, sizeof(chip->tx));
+	sim_chip_update_pins(chip);
+}
+
+void sim_chip_reset_pin(struct sim_chip *chip)
+{
+	if (!chip->powered)
+		return;
+	sim_chip_reset(chip);
+	sim_chip_update_pins(chip);
+}
+
+void sim_chip_refresh_pins(struct sim_chip *chip)
+{
 	sim_chip_update_pins(chip);
 }
 

@@ -548,6 +548,84 @@ static void test_spi_corruption(void **state)
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANCTRL), MCP2510_RESET_CANCTRL);
 }
 
+static void test_spi_garbage_kinds(void **state)
+{
+	struct rig *r = *state;
+	struct sim_chip_faults *f = sim_chip_faults(&r->chip);
+	u8 a[8], b[8];
+
+	f->spi_corrupt = 1;
+	f->spi_corrupt_kind = SIM_CORRUPT_FIXED;
+	f->spi_corrupt_byte = 0x00;
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANCTRL), 0x00);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANCTRL), MCP2510_RESET_CANCTRL);
+
+	/* random bytes differ from each other and from one period to the next */
+	f->spi_corrupt = 2;
+	f->spi_corrupt_kind = SIM_CORRUPT_RANDOM;
+	simh_read_seq(&r->chip, MCP2510_REG_CNF3, a, sizeof(a));
+	simh_read_seq(&r->chip, MCP2510_REG_CNF3, b, sizeof(b));
+	assert_memory_not_equal(a, b, sizeof(a));
+	assert_int_not_equal(a[0], a[1]);
+	assert_int_equal(f->spi_corrupt, 0);
+
+	/* until cleared: the count stays */
+	f->spi_corrupt = SIM_CORRUPT_FOREVER;
+	f->spi_corrupt_kind = SIM_CORRUPT_FIXED;
+	f->spi_corrupt_byte = 0xff;
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANSTAT), 0xff);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANSTAT), 0xff);
+	assert_int_equal(f->spi_corrupt, SIM_CORRUPT_FOREVER);
+	f->spi_corrupt = 0;
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANSTAT), 0x80);
+}
+
+static void test_int_stuck(void **state)
+{
+	struct rig *r = *state;
+	struct sim_chip_faults *f = sim_chip_faults(&r->chip);
+	u64 edges = sim_chip_counters(&r->chip)->interrupts;
+
+	assert_true(sim_chip_pin(&r->chip, SIM_PIN_INT));
+	f->int_stuck = true;
+	sim_chip_refresh_pins(&r->chip);
+	assert_false(sim_chip_pin(&r->chip, SIM_PIN_INT));
+	assert_int_equal(sim_chip_counters(&r->chip)->interrupts, edges + 1);
+	/* no flag to clear: it stays low, even without power */
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANINTF), 0);
+	sim_chip_power(&r->chip, false);
+	assert_false(sim_chip_pin(&r->chip, SIM_PIN_INT));
+	sim_chip_power(&r->chip, true);
+	f->int_stuck = false;
+	sim_chip_refresh_pins(&r->chip);
+	assert_true(sim_chip_pin(&r->chip, SIM_PIN_INT));
+}
+
+static void test_reset_pin(void **state)
+{
+	struct rig *r = *state;
+
+	simh_write(&r->chip, MCP2510_REG_CNF1, SIMH_CNF1_125K);
+	simh_write(&r->chip, MCP2510_REG_CANINTE, 0xff);
+	assert_int_equal(simh_set_mode(&r->chip, MCP2510_MODE_NORMAL), 0);
+	simh_write(&r->chip, MCP2510_REG_CANINTF, MCP2510_INT_RX(0));
+	assert_false(sim_chip_pin(&r->chip, SIM_PIN_INT));
+
+	sim_chip_reset_pin(&r->chip);
+	assert_true(sim_chip_pin(&r->chip, SIM_PIN_INT));	/* CANINTE is 0 */
+	assert_false(sim_chip_ready(&r->chip));
+	sim_bus_advance(&r->bus, sim_chip_startup_ns(&r->chip));
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANSTAT), 0x80);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CNF1), 0);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANINTE), 0);
+
+	/* an unpowered chip has nothing to reset */
+	sim_chip_power(&r->chip, false);
+	sim_chip_reset_pin(&r->chip);
+	assert_false(sim_chip_ready(&r->chip));
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANSTAT), 0xff);
+}
+
 /* AN739 note on CANCTRL: REQOP 111 is only valid after power-up */
 static void test_invalid_reqop_ignored(void **state)
 {
@@ -600,6 +678,9 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_rxbf_pins, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_power_loss, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_spi_corruption, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_spi_garbage_kinds, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_int_stuck, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_reset_pin, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_invalid_reqop_ignored, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_bit_rate, setup_2510, simh_teardown),
 	};
