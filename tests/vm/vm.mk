@@ -1,7 +1,8 @@
 # tests/vm/vm.mk: the QEMU rig (see docs/vm-rig.md).
 #
-#   make vm-kernels          fetch Debian's 6.1 and 6.12, build the debug kernel
-#   make vm-kernel-6.1 | vm-kernel-6.12 | vm-kernel-debug
+#   make vm-kernels          fetch Debian's 6.1, 6.12 and 6.12 PREEMPT_RT,
+#                            build the debug kernel
+#   make vm-kernel-6.1 | vm-kernel-6.12 | vm-kernel-debug | vm-kernel-rt
 #   make initramfs           base initramfs for each kernel in VM_KERNELS
 #   make vmtest              every scenario on every kernel in VM_KERNELS
 #   make vmtest-one SCENARIO=tests/vm/scenarios/x.sh KERNEL=6.12
@@ -13,18 +14,18 @@
 # KDIR for a kernel: $(call vm_kdir,6.12), or tests/vm/kernel-info 6.12 kdir.
 
 VM_DIR := $(TOP)/tests/vm
-VM_KERNELS ?= 6.1 6.12 debug
+VM_KERNELS ?= 6.1 6.12 debug rt
 VMTEST_DEPS +=
 export VM_KERNELS
 
 vm_kdir = $(shell $(VM_DIR)/kernel-info $(1) kdir)
 
-.PHONY: vm-kernels vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug initramfs \
+.PHONY: vm-kernels vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug vm-kernel-rt initramfs \
 	vmtest vmtest-one vm-info
 
-vm-kernels: vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug
+vm-kernels: vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug vm-kernel-rt
 
-vm-kernel-6.1 vm-kernel-6.12:
+vm-kernel-6.1 vm-kernel-6.12 vm-kernel-rt:
 	@$(VM_DIR)/fetch-kernel $(@:vm-kernel-%=%)
 
 vm-kernel-debug:
@@ -38,14 +39,14 @@ vmtest: $(addprefix vm-kernel-,$(VM_KERNELS))
 	@$(VM_DIR)/vmtest -k "$(VM_KERNELS)"
 
 vmtest-one:
-	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|debug]"; exit 2; }
+	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|debug|rt]"; exit 2; }
 	@$(MAKE) --no-print-directory vm-kernel-$(or $(KERNEL),6.1)
 	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS=$(or $(KERNEL),6.1))
 	@VM_SELFTEST=0 $(VM_DIR)/vmtest -k "$(or $(KERNEL),6.1)" $(abspath $(SCENARIO))
 
 vm-info:
-	@for k in 6.1 6.12 debug; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
-# The scenario suite on all three kernels is part of make check.
+	@for k in 6.1 6.12 debug rt; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
+# The scenario suite on every rig kernel is part of make check.
 CHECK_STEPS += vmtest
 
 # make demo: boot Debian's 6.1 kernel with two simulated MCP2510s and show
