@@ -5,10 +5,11 @@
 #                             the .ko files land in build/modules/<release>/
 #   make modules-rig          the same for each kernel of the QEMU rig that is
 #                             there (tests/vm/kernel-info), into
-#                             build/modules/<6.1|6.12|debug>/
+#                             build/modules/<6.1|6.12|debug|rt>/
 #   make modules-check        warning-free builds against Debian's 6.1 and 6.12
-#                             headers with W=1 and sparse (C=1), and
-#                             checkpatch.pl --strict on every kernel source
+#                             headers with W=1 and sparse (C=1), no simulator
+#                             code in mcp2510.ko, and checkpatch.pl --strict
+#                             on every kernel source
 #   make install [KDIR=dir]   mcp2510.ko into <modules>/extra, then depmod
 #                             (INSTALL_MOD_PATH=dir stages it under dir)
 #
@@ -130,6 +131,18 @@ checkpatch: $(CHECKPATCH)
 		echo "checkpatch: findings above" >&2; exit 1; fi
 	@echo "checkpatch --strict: clean ($(words $(KERNEL_SOURCES)) files)"
 
+# $(call sim_free,TREE): one shell command failing when TREE/mcp2510.ko
+# holds any part of the simulator (it is test equipment, never shipped): a
+# symbol the chip model's objects define, or a mention of the sim module.
+sim_free = nm -g --defined-only $(1)/tests/sim/*.o | awk 'NF == 3 { print $$3 }' | \
+		sort -u >$(1)/sim.syms; \
+	[ -s $(1)/sim.syms ] || { echo "modules-check: no chip model objects in $(1)" >&2; exit 1; }; \
+	{ nm $(1)/mcp2510.ko | awk '{ print $$NF }' | sort -u | comm -12 - $(1)/sim.syms; \
+	  strings -a $(1)/mcp2510.ko | grep -Ei 'mcp2510[-_]sim|(^|[^a-z])sim_'; } \
+		>$(1)/sim.leaks; \
+	if [ -s $(1)/sim.leaks ]; then cat $(1)/sim.leaks; \
+		echo "modules-check: simulator code in mcp2510.ko" >&2; exit 1; fi
+
 # $(call strict_build,HEADERS-PACKAGE,TAG): a full build with W=1 and sparse
 # on every file, in a fresh tree of its own (several people may run this at
 # once); any compiler, sparse or modpost warning fails it.
@@ -146,8 +159,9 @@ define strict_build
 	if grep -q 'warning:\|error:\|WARNING:\|ERROR:' $$log; then \
 		grep 'warning:\|error:\|WARNING:\|ERROR:' $$log; \
 		echo "modules-check: $(1) build not clean (log: $$log)" >&2; exit 1; fi; \
+	$(call sim_free,$$tree); \
 	rm -rf $$tree $$log
-	@echo "$(1): no warnings"
+	@echo "$(1): no warnings, no simulator code in mcp2510.ko"
 endef
 
 # apt's lists may be missing on a fresh machine: the 6.12 name comes from them.
