@@ -113,6 +113,29 @@ u8 mcp2510_error_overflow(struct mcp2510_chip *chip, u8 eflg,
 	return ovr;
 }
 
+/*
+ * MERRF does not say whether the chip was sending or receiving, but a
+ * buffer still waiting to go with TXERR set had its frame destroyed.  A
+ * buffer that went out since then is no longer busy, and TXREQ clears
+ * TXERR, so an old failure is not taken for a new one.
+ */
+static bool error_while_sending(struct mcp2510_chip *chip)
+{
+	unsigned int n;
+	u8 ctrl;
+
+	for (n = 0; n < MCP2510_TXB_COUNT; n++) {
+		if (!(chip->tx.busy & BIT(n)))
+			continue;
+		/* A failed read leaves the direction unknown: say receive. */
+		if (mcp2510_reg_read(chip, MCP2510_REG_TXBCTRL(n), &ctrl, 1))
+			return false;
+		if (ctrl & MCP2510_TXBCTRL_TXERR)
+			return true;
+	}
+	return false;
+}
+
 void mcp2510_error_bus(struct mcp2510_chip *chip,
 		       const struct can_berr_counter *bec)
 {
@@ -123,6 +146,8 @@ void mcp2510_error_bus(struct mcp2510_chip *chip,
 		return;
 	/* the chip does not say which kind of error it saw */
 	error_frame_init(&cf, CAN_ERR_PROT | CAN_ERR_BUSERROR, bec);
+	if (error_while_sending(chip))
+		cf.data[2] = CAN_ERR_PROT_TX;
 	error_frame_send(chip, &cf);
 }
 

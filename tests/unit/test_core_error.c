@@ -3,7 +3,8 @@
  * Fault confinement as the core reports it, on a simulated bus: warning
  * and passive for a node nobody acknowledges, bus-off under bus errors
  * and the way back (the chip's own recovery and mcp2510_restart()), bus
- * error reporting, the error counters, and one-shot failures.
+ * error reporting and whether a bus error hit the node's own frame, the
+ * error counters, and one-shot failures.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -196,6 +197,31 @@ static void test_bus_error_reporting(void **state)
 	}
 }
 
+/* Only the node whose own frame was destroyed reports a TX bus error. */
+static void test_bus_error_direction(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2510);
+	struct ch_node *sender = &rig->node[0], *receiver = &rig->node[1];
+	struct can_frame cf = ch_frame(0x456, 8, 0);
+	const struct can_frame *berr;
+
+	(void)state;
+	assert_int_equal(ch_start(sender, BITRATE, CAN_CTRLMODE_BERR_REPORTING), 0);
+	assert_int_equal(ch_start(receiver, BITRATE, CAN_CTRLMODE_BERR_REPORTING), 0);
+	sim_bus_faults(&rig->bus)->bus_errors = 3;
+	assert_true(mcp2510_tx_submit(&sender->core, &cf) >= 0);
+	ch_run_idle(rig, 50 * MS);
+	assert_int_equal(receiver->ev.rx_count, 1);
+
+	berr = find_error(sender, CAN_ERR_BUSERROR);
+	assert_non_null(berr);
+	assert_int_equal(berr->data[2], CAN_ERR_PROT_TX);
+	berr = find_error(receiver, CAN_ERR_BUSERROR);
+	assert_non_null(berr);
+	assert_int_equal(berr->data[2], 0);
+	ch_rig_free(rig);
+}
+
 static void test_error_counters(void **state)
 {
 	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
@@ -243,6 +269,7 @@ int main(void)
 		cmocka_unit_test(test_bus_off_and_the_chips_own_recovery),
 		cmocka_unit_test(test_restart_from_bus_off),
 		cmocka_unit_test(test_bus_error_reporting),
+		cmocka_unit_test(test_bus_error_direction),
 		cmocka_unit_test(test_error_counters),
 		cmocka_unit_test(test_one_shot_failure_is_reported),
 	};
