@@ -22,17 +22,18 @@ _rx_count() {
 	cat /proc/net/can/rcvlist_* 2>/dev/null | grep -c "^ *$1 " || true
 }
 
-# dump_start IF N FILE [candump options]: candump -n N IF into FILE in the
-# background, returning once its socket is registered (no frame is missed).
-# Stops itself after 20 s without a frame.  Collect it with dump_wait.
+# dump_start IF[,FILTER...] N FILE [candump options]: candump -n N IF into
+# FILE in the background, returning once its socket is registered (no frame
+# is missed).  Stops itself after 20 s without a frame.  Collect it with
+# dump_wait.
 dump_start() {
 	_if=$1 _n=$2 _file=$3
 	shift 3
-	_before=$(_rx_count "$_if")
+	_before=$(_rx_count "${_if%%,*}")
 	candump -n "$_n" -T 20000 "$@" "$_if" >"$_file" &
 	DUMP_PID=$!
 	_tries=0
-	while [ "$(_rx_count "$_if")" -le "${_before:-0}" ]; do
+	while [ "$(_rx_count "${_if%%,*}")" -le "${_before:-0}" ]; do
 		_tries=$((_tries + 1))
 		[ $_tries -le 100 ] || { sleep 1; break; }
 		sleep 0.05
@@ -74,4 +75,42 @@ error_seen() {
 		[ $((0x$d1 & ${3:-0})) -eq $((${3:-0})) ] && return 0
 	done <"$1"
 	return 1
+}
+
+# The simulator's debugfs directory (docs/simulator.md).
+SIM=/sys/kernel/debug/mcp2510-sim
+
+# if_stat IF COUNTER: one of IF's interface statistics.
+if_stat() {
+	cat "/sys/class/net/$1/statistics/$2"
+}
+
+# sim_counter CHIP NAME / sim_state CHIP NAME: one line of chipN/counters
+# or chipN/state.
+sim_counter() {
+	awk -v k="$2" '$1 == k { print $2 }' "$SIM/chip$1/counters"
+}
+sim_state() {
+	awk -v k="$2" '$1 == k { print $2 }' "$SIM/chip$1/state"
+}
+
+# Whole seconds since boot.
+uptime_s() {
+	cut -d. -f1 /proc/uptime
+}
+
+# wait_for SECONDS COMMAND...: poll COMMAND until it succeeds; fails
+# (status 1) once SECONDS have passed.
+wait_for() {
+	_end=$(($(uptime_s) + $1))
+	shift
+	while ! "$@"; do
+		[ "$(uptime_s)" -lt "$_end" ] || return 1
+		sleep 0.2
+	done
+}
+
+# can_state_is IF STATE: ip -details shows IF in STATE (ERROR-ACTIVE, ...).
+can_state_is() {
+	ip -details link show "$1" | grep -q "state $2 "
 }
