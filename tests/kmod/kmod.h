@@ -45,6 +45,7 @@ struct mcp2510_sim_chip {
 	struct mcp2510_sim_harness_counters harness;
 	u32 spi_fail_left;
 	bool powered;			/* as last set through debugfs "power" */
+	u8 rts;				/* TXnRTS levels as set through debugfs "rts" */
 	struct software_node swnode;
 	char swnode_name[24];
 	struct spi_device *spi;
@@ -95,7 +96,9 @@ struct mcp2510_sim {
 	const char *chip_name;		/* the SPI modalias: "mcp2510", "mcp2515" */
 	u32 sck_max_hz;			/* the chip's SPI clock limit */
 	u32 osc_hz;
-	struct property_entry props[2];	/* the chips' software node, terminated */
+	unsigned int int_trigger;	/* IRQ_TYPE_* the chips' INT lines get */
+	bool gpio_controller;		/* the chips offer their pins as GPIOs */
+	struct property_entry props[3];	/* the chips' software node, terminated */
 	u8 spi_tx[MCP2510_SIM_SPI_BUF_LEN];
 	u8 spi_rx[MCP2510_SIM_SPI_BUF_LEN];
 
@@ -121,6 +124,8 @@ void mcp2510_sim_irq_miss_edges(struct mcp2510_sim *sim, unsigned int line,
 void mcp2510_sim_irq_reset_counts(struct mcp2510_sim *sim, unsigned int line);
 void mcp2510_sim_irq_describe(struct mcp2510_sim *sim, unsigned int line,
 			      struct mcp2510_sim_line *out);
+const char *mcp2510_sim_trigger_name(unsigned int type);
+int mcp2510_sim_trigger_parse(const char *name, unsigned int *type);
 
 /* kmod_of.c */
 int mcp2510_sim_of_find(struct mcp2510_sim *sim);
@@ -139,10 +144,12 @@ extern const struct file_operations mcp2510_sim_monitor_fops;
 int mcp2510_sim_frame_parse(const char *text, struct can_frame *cf);
 int mcp2510_sim_frame_format(char *buf, size_t size, const struct can_frame *cf);
 
-/* kmod_debugfs_bus.c, kmod_debugfs_chip.c */
+/* kmod_debugfs_bus.c, kmod_debugfs_chip.c, kmod_debugfs_hostile.c */
 void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_remove(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				     struct dentry *parent);
+void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
+					struct dentry *dir);
 
 #endif /* MCP2510_SIM_KMOD_H */

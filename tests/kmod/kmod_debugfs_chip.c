@@ -106,22 +106,6 @@ static const char *const opmode_names[] = {
 	[MCP2510_MODE_CONFIG] = "config",
 };
 
-static const char *trigger_name(unsigned int type)
-{
-	switch (type) {
-	case IRQ_TYPE_LEVEL_LOW:
-		return "level-low";
-	case IRQ_TYPE_LEVEL_HIGH:
-		return "level-high";
-	case IRQ_TYPE_EDGE_FALLING:
-		return "edge-falling";
-	case IRQ_TYPE_EDGE_RISING:
-		return "edge-rising";
-	default:
-		return "edge-both";
-	}
-}
-
 struct chip_state {
 	unsigned int opmode, tec, rec;
 	bool ready, bus_off;
@@ -162,8 +146,8 @@ static int state_show(struct seq_file *m, void *v)
 	seq_printf(m, "int %d\nrx0bf %d\nrx1bf %d\n", st.pins[SIM_PIN_INT],
 		   st.pins[SIM_PIN_RX0BF], st.pins[SIM_PIN_RX1BF]);
 	seq_printf(m, "irq %d\nirq_type %s\nirq_masked %d\n",
-		   chip->spi ? chip->spi->irq : 0, trigger_name(line.type),
-		   line.masked);
+		   chip->spi ? chip->spi->irq : 0,
+		   mcp2510_sim_trigger_name(line.type), line.masked);
 	if (chip->spi)
 		seq_printf(m, "spi_device %s\nspi_bus %d\nspi_cs %u\n",
 			   dev_name(&chip->spi->dev), chip->spi->controller->bus_num,
@@ -253,6 +237,7 @@ static int spi_corrupt_set(void *data, u64 val)
 {
 	struct mcp2510_sim_chip *chip = data;
 
+	/* U32_MAX (SIM_CORRUPT_FOREVER) keeps the garbage until 0 is written */
 	if (val > U32_MAX)
 		return -EINVAL;
 	mcp2510_sim_lock(chip->sim);
@@ -360,6 +345,34 @@ static int int_edge_miss_set(void *data, u64 val)
 DEFINE_DEBUGFS_ATTRIBUTE(int_edge_miss_fops, int_edge_miss_get,
 			 int_edge_miss_set, "%llu\n");
 
+/* TXnRTS input levels as bits 0-2 (1: high, the pull-ups' idle level). */
+static int rts_get(void *data, u64 *val)
+{
+	struct mcp2510_sim_chip *chip = data;
+
+	mcp2510_sim_lock(chip->sim);
+	*val = chip->rts;
+	mcp2510_sim_unlock(chip->sim);
+	return 0;
+}
+
+static int rts_set(void *data, u64 val)
+{
+	struct mcp2510_sim_chip *chip = data;
+	unsigned int n;
+
+	if (val >= BIT(MCP2510_TXB_COUNT))
+		return -EINVAL;
+	mcp2510_sim_lock(chip->sim);
+	chip->rts = val;
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		sim_chip_set_rts(&chip->model, n, val & BIT(n));
+	mcp2510_sim_unlock(chip->sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(rts_fops, rts_get, rts_set, "%llu\n");
+
 void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				     struct dentry *parent)
 {
@@ -380,4 +393,6 @@ void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				   &mode_delay_us_fops);
 	debugfs_create_file_unsafe("int_edge_miss", 0600, dir, chip,
 				   &int_edge_miss_fops);
+	debugfs_create_file_unsafe("rts", 0600, dir, chip, &rts_fops);
+	mcp2510_sim_debugfs_hostile_create(chip, dir);
 }

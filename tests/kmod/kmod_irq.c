@@ -29,6 +29,40 @@ static const char *const pin_names[SIM_PIN_COUNT] = {
 	[SIM_PIN_RX1BF] = "RX1BF",
 };
 
+static const struct {
+	const char *name;
+	unsigned int type;
+} triggers[] = {
+	{ "level-low", IRQ_TYPE_LEVEL_LOW },
+	{ "level-high", IRQ_TYPE_LEVEL_HIGH },
+	{ "edge-falling", IRQ_TYPE_EDGE_FALLING },
+	{ "edge-rising", IRQ_TYPE_EDGE_RISING },
+	{ "edge-both", IRQ_TYPE_EDGE_BOTH },
+};
+
+const char *mcp2510_sim_trigger_name(unsigned int type)
+{
+	size_t i;
+
+	for (i = 0; i < ARRAY_SIZE(triggers); i++)
+		if (triggers[i].type == type)
+			return triggers[i].name;
+	return "none";
+}
+
+int mcp2510_sim_trigger_parse(const char *name, unsigned int *type)
+{
+	size_t i;
+
+	for (i = 0; i < ARRAY_SIZE(triggers); i++) {
+		if (!strcmp(triggers[i].name, name)) {
+			*type = triggers[i].type;
+			return 0;
+		}
+	}
+	return -EINVAL;
+}
+
 unsigned int mcp2510_sim_line(const struct mcp2510_sim *sim, unsigned int chip,
 			      enum sim_pin pin)
 {

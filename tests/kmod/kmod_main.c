@@ -40,6 +40,14 @@ static int spidev_node = -1;
 module_param(spidev_node, int, 0444);
 MODULE_PARM_DESC(spidev_node, "chip to hand to spidev instead of the driver (default -1: none)");
 
+static char *int_trigger = "level-low";
+module_param(int_trigger, charp, 0444);
+MODULE_PARM_DESC(int_trigger, "INT trigger type: level-low (default), level-high, edge-falling, edge-rising, edge-both");
+
+static bool gpio_controller;
+module_param(gpio_controller, bool, 0444);
+MODULE_PARM_DESC(gpio_controller, "give the SPI devices gpio-controller (default no)");
+
 #define MAX_TIME_SCALE	1000000
 
 struct chip_variant {
@@ -72,6 +80,8 @@ static const struct chip_variant *find_variant(const char *name)
 
 static int check_params(void)
 {
+	unsigned int trigger;
+
 	if (nodes < 1 || nodes > SIM_MAX_NODES) {
 		pr_err("nodes=%u: need 1..%d\n", nodes, SIM_MAX_NODES);
 		return -EINVAL;
@@ -87,6 +97,10 @@ static int check_params(void)
 	if (time_scale < 1 || time_scale > MAX_TIME_SCALE) {
 		pr_err("time_scale=%u: need 1..%d\n", time_scale,
 		       MAX_TIME_SCALE);
+		return -EINVAL;
+	}
+	if (mcp2510_sim_trigger_parse(int_trigger, &trigger)) {
+		pr_err("int_trigger=%s: unknown\n", int_trigger);
 		return -EINVAL;
 	}
 	if (spidev_node < -1 || spidev_node >= (int)nodes) {
@@ -110,6 +124,7 @@ static int build_bus(struct mcp2510_sim *sim, const struct chip_variant *v)
 		chip->sim = sim;
 		chip->index = n;
 		chip->powered = true;
+		chip->rts = BIT(MCP2510_TXB_COUNT) - 1;
 		ret = sim_chip_init(&chip->model, v->model, osc_hz);
 		if (ret) {
 			pr_err("osc_hz=%u: rejected by the model\n", osc_hz);
@@ -138,6 +153,8 @@ static struct mcp2510_sim *sim_create(void)
 	sim->chip_name = v->name;
 	sim->sck_max_hz = v->sck_max_hz;
 	sim->osc_hz = osc_hz;
+	mcp2510_sim_trigger_parse(int_trigger, &sim->int_trigger);
+	sim->gpio_controller = gpio_controller;
 	ret = mcp2510_sim_of_find(sim);
 	if (ret)
 		goto out_free;

@@ -9,6 +9,7 @@
  * asks for cs_change.  CS always rises at the end of a message.
  */
 #include <linux/device.h>
+#include <linux/irq.h>
 #include <linux/property.h>
 #include <linux/spi/spi.h>
 #include <linux/string.h>
@@ -173,6 +174,10 @@ static int add_chip_device(struct mcp2510_sim_chip *chip, const char *driver)
 				 mcp2510_sim_line(sim, chip->index, SIM_PIN_INT));
 	if (irq < 0)
 		return irq;
+	/* as a firmware's interrupt specifier would, before any driver looks */
+	ret = irq_set_irq_type(irq, sim->int_trigger);
+	if (ret)
+		return ret;
 
 	spi = spi_alloc_device(sim->ctlr);
 	if (!spi)
@@ -188,8 +193,9 @@ static int add_chip_device(struct mcp2510_sim_chip *chip, const char *driver)
 		goto out_put;
 
 	/*
-	 * What a device tree gives a real chip: the oscillator frequency.  The
-	 * node's name is the device's name from 6.12 on ("spi-<node>").
+	 * What a device tree gives a real chip: the oscillator frequency and,
+	 * if asked for, gpio-controller.  The node's name is the device's name
+	 * from 6.12 on ("spi-<node>").
 	 */
 	snprintf(chip->swnode_name, sizeof(chip->swnode_name), "%s-chip%u",
 		 MCP2510_SIM_NAME, chip->index);
@@ -219,6 +225,8 @@ static int add_chip_devices(struct mcp2510_sim *sim, const char *driver,
 	int ret;
 
 	sim->props[0] = PROPERTY_ENTRY_U32("clock-frequency", sim->osc_hz);
+	if (sim->gpio_controller)
+		sim->props[1] = PROPERTY_ENTRY_BOOL("gpio-controller");
 	for (n = 0; n < sim->nchips; n++) {
 		ret = add_chip_device(&sim->chips[n],
 				      (int)n == spidev_node ? "spidev" : driver);
