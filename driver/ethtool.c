@@ -46,4 +46,7 @@ const struct ethtool_ops mcp2510_ethtool_ops = {
 	.get_regs_len = mcp2510_get_regs_len,
 	.get_regs = mcp2510_get_regs,
 	.get_ts_info = ethtool_op_get_ts_info,
+	.get_sset_count = mcp2510_get_sset_count,
+	.get_strings = mcp2510_get_strings,
+	.get_ethtool_stats = mcp2510_get_ethtool_stats,
 };

@@ -6,6 +6,7 @@
  */
 #include <linux/interrupt.h>
 #include <linux/irq.h>
+#include <linux/jiffies.h>
 #include <linux/netdevice.h>
 #include <linux/spi/spi.h>
 
@@ -27,9 +28,35 @@ unsigned long mcp2510_irq_trigger(struct mcp2510_priv *priv)
 	return type;
 }
 
+/*
+ * A level-triggered INT only fires while the chip flags something, and the
+ * thread clears what it handles, so a call that finds nothing is rare: it
+ * takes a flag cleared by another path in between.  Many in a short time
+ * mean INT is asserted for no reason (a stuck line, a short), and an
+ * edge-triggered loop that hits its bound means the chip never lets go.
+ * Either way the line only keeps the CPU busy: hand the chip to the watch.
+ */
+static bool mcp2510_irq_storm(struct mcp2510_priv *priv, int handled)
+{
+	struct mcp2510_watch *w = &priv->watch;
+
+	if (handled != 0 && handled != -EAGAIN)
+		return false;
+	if (time_after(jiffies, w->empty_since + HZ)) {
+		w->empty_since = jiffies;
+		w->empty_irqs = 0;
+	}
+	if (handled == 0 && ++w->empty_irqs < MCP2510_STORM_EMPTY_IRQS)
+		return false;
+	w->empty_irqs = 0;
+	mcp2510_watch_storm(priv);
+	return true;
+}
+
 irqreturn_t mcp2510_irq_thread(int irq, void *data)
 {
 	struct mcp2510_priv *priv = data;
+	bool storm;
 	int handled;
 
 	mcp2510_lock(priv);
@@ -37,13 +64,13 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data)
 	/* Stopping the chip from inside the core's pass is not allowed. */
 	if (priv->halt_requested)
 		mcp2510_halt_locked(priv);
+	storm = mcp2510_irq_storm(priv, handled);
 	mcp2510_unlock(priv);
 	mcp2510_rx_kick(priv);
 
-	if (handled == -EAGAIN) {
-		netdev_warn_once(priv->ndev, "INT keeps asserting: interrupt storm\n");
+	/* Handled by disabling the line: not for the spurious detector. */
+	if (storm || handled == -EAGAIN)
 		return IRQ_HANDLED;
-	}
 	if (handled < 0) {
 		if (net_ratelimit())
 			netdev_err(priv->ndev, "interrupt handling failed: %pe\n",

@@ -30,6 +30,27 @@
 struct regulator;
 struct clk;
 
+/* Calls finding nothing within a second that make an interrupt storm. */
+#define MCP2510_STORM_EMPTY_IRQS	32
+
+/* watch.c: health checks, and polling through storms and missed edges */
+struct mcp2510_watch {
+	struct delayed_work work;
+	/* under the chip lock */
+	bool running;			/* the interface is up: re-arm */
+	bool polling;			/* INT disabled, the work polls the chip */
+	bool storming;			/* reported, not yet reported over */
+	bool recovering;		/* failed a health check, not back yet */
+	unsigned int backoff_ms;	/* polling time before INT is retried */
+	unsigned long poll_until;	/* jiffies */
+	unsigned long irq_back_at;	/* jiffies: INT enabled again */
+	unsigned long empty_since;	/* jiffies: start of the counting */
+	unsigned int empty_irqs;	/* IRQ thread calls that found nothing */
+	/* ethtool -S */
+	u64 irq_storms;
+	u64 missed_irqs;		/* work found by polling an edge line */
+};
+
 struct mcp2510_priv {
 	struct can_priv can;		/* first: the CAN core expects it */
 	struct napi_struct napi;
@@ -76,6 +97,8 @@ struct mcp2510_priv {
 	u8 bf_set;			/* bit n: RXnBF driven by gpiolib */
 	u8 bf_level;			/* bit n: RXnBF high */
 
+	struct mcp2510_watch watch;
+
 	bool powered;			/* vdd and oscillator on */
 	bool hw_running;		/* IRQ requested, chip started */
 	bool suspended_running;		/* the interface was up at suspend */
@@ -116,6 +139,17 @@ void mcp2510_tx_forget(struct mcp2510_priv *priv);
 /* irq.c */
 irqreturn_t mcp2510_irq_thread(int irq, void *data);
 unsigned long mcp2510_irq_trigger(struct mcp2510_priv *priv);
+
+/* watch.c */
+void mcp2510_watch_start(struct mcp2510_priv *priv);
+void mcp2510_watch_stop(struct mcp2510_priv *priv);
+void mcp2510_watch_storm(struct mcp2510_priv *priv);
+
+/* ethtool_stats.c */
+int mcp2510_get_sset_count(struct net_device *ndev, int sset);
+void mcp2510_get_strings(struct net_device *ndev, u32 sset, u8 *data);
+void mcp2510_get_ethtool_stats(struct net_device *ndev,
+			       struct ethtool_stats *stats, u64 *data);
 
 /* sysfs.c */
 extern const struct attribute_group mcp2510_filter_group;

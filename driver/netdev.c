@@ -91,6 +91,7 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 	mcp2510_rx_kick(priv);
 	if (ret)
 		goto out_free_irq;
+	mcp2510_watch_start(priv);
 	return 0;
 
 out_free_irq:
@@ -109,6 +110,7 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 		return;
 
 	/* No more interrupts or loads: the chip is ours alone from here. */
+	mcp2510_watch_stop(priv);
 	free_irq(priv->spi->irq, priv);
 	cancel_work_sync(&priv->tx_work);
 	mcp2510_tx_flush(priv);

@@ -1,0 +1,207 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * The watch: a delayed work that looks after the chip while the interface
+ * is up, for the failures the INT line cannot report.
+ *
+ * - Health: once a second the chip must still hold what was programmed.
+ *   A chip that reset itself raises no interrupt ever again (CANINTE is
+ *   0), so only a look at its registers tells; it is then programmed
+ *   again with the same settings, giving up the frames in its buffers.
+ * - Interrupt storms: when the IRQ thread finds INT asserted with nothing
+ *   to handle, over and over, it disables the line and the watch polls
+ *   the chip instead, every MCP2510_POLL_MS, for a backoff period.  Then
+ *   the line is tried again; a storm that goes on doubles the backoff.
+ * - Missed edges: on an edge-triggered line an edge lost while INT was
+ *   already low leaves INT low for good and no further edge comes.  The
+ *   watch runs the interrupt loop every MCP2510_WATCH_EDGE_MS, which
+ *   empties the chip and lets INT go high, so the next event is an edge.
+ */
+#include <linux/can/dev.h>
+#include <linux/interrupt.h>
+#include <linux/jiffies.h>
+#include <linux/minmax.h>
+#include <linux/netdevice.h>
+#include <linux/spi/spi.h>
+
+#include "mcp2510_priv.h"
+
+#define MCP2510_WATCH_MS	1000
+#define MCP2510_WATCH_EDGE_MS	50
+#define MCP2510_POLL_MS		10
+#define MCP2510_BACKOFF_MIN_MS	100
+#define MCP2510_BACKOFF_MAX_MS	2000
+/* A storm within this long of the line coming back is the same storm. */
+#define MCP2510_STORM_GAP_MS	1000
+
+static unsigned long mcp2510_watch_delay(const struct mcp2510_priv *priv)
+{
+	const struct mcp2510_watch *w = &priv->watch;
+
+	if (w->polling)
+		return msecs_to_jiffies(MCP2510_POLL_MS);
+	return msecs_to_jiffies(priv->chip.irq_edge ? MCP2510_WATCH_EDGE_MS :
+				MCP2510_WATCH_MS);
+}
+
+/* An error frame that tells listeners the controller was restarted. */
+static void mcp2510_watch_report_restart(struct mcp2510_priv *priv)
+{
+	struct can_frame *cf;
+	struct sk_buff *skb;
+
+	skb = alloc_can_err_skb(priv->ndev, &cf);
+	if (!skb)
+		return;
+	cf->can_id |= CAN_ERR_RESTARTED;
+	mcp2510_rx_queue(priv, skb);
+}
+
+static void mcp2510_watch_health(struct mcp2510_priv *priv)
+{
+	struct mcp2510_watch *w = &priv->watch;
+	int ret;
+
+	ret = mcp2510_health_check(&priv->chip);
+	if (ret != -EBADMSG)
+		return;
+	/* One line per episode, however many ticks the chip stays broken. */
+	if (!w->recovering)
+		netdev_err(priv->ndev,
+			   "chip lost its configuration (reset, or garbage on SPI): re-initialising\n");
+	w->recovering = true;
+	ret = mcp2510_recover(&priv->chip);
+	if (ret)
+		return;
+	w->recovering = false;
+	priv->can.state = CAN_STATE_ERROR_ACTIVE;
+	mcp2510_gpio_restore(priv);
+	mcp2510_watch_report_restart(priv);
+	netdev_info(priv->ndev, "chip re-initialised\n");
+}
+
+/* Run the interrupt loop as the IRQ thread would. */
+static void mcp2510_watch_poll(struct mcp2510_priv *priv)
+{
+	struct mcp2510_watch *w = &priv->watch;
+	int handled;
+
+	handled = mcp2510_irq_handle(&priv->chip);
+	/* Work found outside a storm is an interrupt the line never brought. */
+	if (handled > 0 && !w->polling)
+		w->missed_irqs++;
+}
+
+/* Give the line another chance once the backoff is over. */
+static void mcp2510_watch_end_polling(struct mcp2510_priv *priv)
+{
+	struct mcp2510_watch *w = &priv->watch;
+
+	if (!w->polling || time_before(jiffies, w->poll_until))
+		return;
+	w->polling = false;
+	w->irq_back_at = jiffies;
+	enable_irq(priv->spi->irq);
+}
+
+/* A storm is over when the line stayed quiet for a while after coming back. */
+static void mcp2510_watch_end_storm(struct mcp2510_priv *priv)
+{
+	struct mcp2510_watch *w = &priv->watch;
+
+	if (!w->storming || w->polling ||
+	    time_before(jiffies, w->irq_back_at +
+			msecs_to_jiffies(MCP2510_STORM_GAP_MS)))
+		return;
+	w->storming = false;
+	netdev_info(priv->ndev, "INT quiet again: back to interrupts\n");
+}
+
+static void mcp2510_watch_work(struct work_struct *work)
+{
+	struct mcp2510_priv *priv = container_of(to_delayed_work(work),
+						 struct mcp2510_priv,
+						 watch.work);
+	struct mcp2510_watch *w = &priv->watch;
+	unsigned long delay;
+
+	mcp2510_lock(priv);
+	if (!w->running) {
+		mcp2510_unlock(priv);
+		return;
+	}
+	mcp2510_watch_health(priv);
+	if (w->polling || priv->chip.irq_edge)
+		mcp2510_watch_poll(priv);
+	if (priv->halt_requested)
+		mcp2510_halt_locked(priv);
+	mcp2510_watch_end_polling(priv);
+	mcp2510_watch_end_storm(priv);
+	delay = mcp2510_watch_delay(priv);
+	mcp2510_unlock(priv);
+
+	mcp2510_rx_kick(priv);
+	queue_delayed_work(system_wq, &w->work, delay);
+}
+
+/*
+ * From the IRQ thread, with the chip lock held: INT keeps firing for
+ * nothing.  The thread cannot wait for itself, hence the nosync disable.
+ */
+void mcp2510_watch_storm(struct mcp2510_priv *priv)
+{
+	struct mcp2510_watch *w = &priv->watch;
+	bool same;
+
+	lockdep_assert_held(&priv->lock);
+	if (!w->running || w->polling)
+		return;
+	disable_irq_nosync(priv->spi->irq);
+	w->polling = true;
+
+	same = w->storming &&
+	       time_before(jiffies, w->irq_back_at +
+			   msecs_to_jiffies(MCP2510_STORM_GAP_MS));
+	if (same) {
+		w->backoff_ms = min(2 * w->backoff_ms, MCP2510_BACKOFF_MAX_MS);
+	} else {
+		w->backoff_ms = MCP2510_BACKOFF_MIN_MS;
+		w->storming = true;
+		w->irq_storms++;
+		if (net_ratelimit())
+			netdev_warn(priv->ndev,
+				    "interrupt storm on INT: polling the chip instead\n");
+	}
+	w->poll_until = jiffies + msecs_to_jiffies(w->backoff_ms);
+	mod_delayed_work(system_wq, &w->work, 0);
+}
+
+void mcp2510_watch_start(struct mcp2510_priv *priv)
+{
+	struct mcp2510_watch *w = &priv->watch;
+
+	INIT_DELAYED_WORK(&w->work, mcp2510_watch_work);
+	mcp2510_lock(priv);
+	w->running = true;
+	w->polling = false;
+	w->storming = false;
+	w->recovering = false;
+	mcp2510_unlock(priv);
+	queue_delayed_work(system_wq, &w->work, mcp2510_watch_delay(priv));
+}
+
+/* Before free_irq(): leaves the line enabled, as request_irq() found it. */
+void mcp2510_watch_stop(struct mcp2510_priv *priv)
+{
+	struct mcp2510_watch *w = &priv->watch;
+	bool polling;
+
+	mcp2510_lock(priv);
+	w->running = false;
+	polling = w->polling;
+	w->polling = false;
+	mcp2510_unlock(priv);
+
+	cancel_delayed_work_sync(&w->work);
+	if (polling)
+		enable_irq(priv->spi->irq);
+}
