@@ -43,6 +43,7 @@ include driver/driver.mk
 include tests/vm-arm64/vm-arm64.mk
 include tests/kmod/kmod.mk
 include tests/vm/vm.mk
+include tests/soak/soak.mk
 include dts/dts.mk
 include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
