@@ -106,8 +106,10 @@ for pattern in "fixed 255" "fixed 0" "random"; do
 	echo "$dev" >$drv/bind 2>/dev/null || true
 	log_since "$mark"
 	[ ! -e /sys/class/net/can1 ] || fail "can1 registered on garbage '$pattern'"
-	expect "log lines for a refused probe ($pattern)" "$(log_since "$mark" | wc -l)" 1
-	log_since "$mark" | grep -q "$dev: no mcp2510 answers on SPI: -ENODEV" ||
+	# (The debug kernel's regulator core adds its own lines to every probe.)
+	expect "log lines for a refused probe ($pattern)" \
+		"$(log_since "$mark" | grep -vc 'dummy supplies not allowed' || true)" 1
+	log_since "$mark" | grep -q "$dev: no mcp2510 answers on SPI: -\(ENODEV\|19\)" ||
 		fail "the refusal does not say why"
 	echo 0 >$sim/chip1/spi_corrupt
 	echo "$dev" >$drv/unbind 2>/dev/null || true
