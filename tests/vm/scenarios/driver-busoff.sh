@@ -14,12 +14,7 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
-[ -d "$sim" ] || mount -t debugfs none /sys/kernel/debug
-[ -d "$sim" ] || fail "no $sim"
-
 show() { ip -details -statistics link show "$1"; }
-state_is() { ip -details link show "$1" | grep -q "state $2 "; }
 
 # The "re-started bus-errors arbit-lost error-warn error-pass bus-off"
 # numbers of ip -details -statistics, as "name=value" words.
@@ -33,31 +28,19 @@ can_stat() { can_stats "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
 CAN_ERR_CRTL=0x4 CAN_ERR_BUSOFF=0x40 CAN_ERR_BUSERROR=0x80
 CAN_ERR_CRTL_TX_WARNING=0x08 CAN_ERR_CRTL_TX_PASSIVE=0x20
 
-uptime_s() { cut -d. -f1 /proc/uptime; }
-
-# wait_for SECONDS COMMAND...: poll COMMAND until it succeeds.
-wait_for() {
-	_end=$(($(uptime_s) + $1))
-	shift
-	while ! "$@"; do
-		[ "$(uptime_s)" -lt "$_end" ] || return 1
-		sleep 0.2
-	done
-}
-
 restarted() { [ "$(can_stat can0 restarts)" -ge 1 ]; }
 
 echo "== error-passive without ACK, bus-off under bus errors, manual restart"
 can_up can0 125000 berr-reporting on
 can_up can1 125000
 errors_start can0 /tmp/err0.txt
-echo 1 >"$sim/no_ack"
+echo 1 >"$SIM/no_ack"
 cansend can0 123#11
-wait_for 30 state_is can0 ERROR-PASSIVE || { show can0; fail "can0 never went error-passive"; }
-echo 1000 >"$sim/bus_errors"
-wait_for 30 state_is can0 BUS-OFF || { show can0; fail "can0 never went bus-off"; }
-echo 0 >"$sim/bus_errors"
-echo 0 >"$sim/no_ack"
+wait_for 30 can_state_is can0 ERROR-PASSIVE || { show can0; fail "can0 never went error-passive"; }
+echo 1000 >"$SIM/bus_errors"
+wait_for 30 can_state_is can0 BUS-OFF || { show can0; fail "can0 never went bus-off"; }
+echo 0 >"$SIM/bus_errors"
+echo 0 >"$SIM/no_ack"
 errors_stop
 show can0
 can_stats can0
@@ -73,18 +56,18 @@ error_seen /tmp/err0.txt $CAN_ERR_CRTL $CAN_ERR_CRTL_TX_PASSIVE ||
 error_seen /tmp/err0.txt $CAN_ERR_BUSOFF || { cat /tmp/err0.txt; fail "no bus-off frame"; }
 # restart-ms 0: it stays off the bus.
 sleep 1
-state_is can0 BUS-OFF || fail "can0 left bus-off by itself"
+can_state_is can0 BUS-OFF || fail "can0 left bus-off by itself"
 ip link set can0 type can restart || fail "manual restart refused"
-state_is can0 ERROR-ACTIVE || { show can0; fail "can0 not error-active after restart"; }
+can_state_is can0 ERROR-ACTIVE || { show can0; fail "can0 not error-active after restart"; }
 [ "$(can_stat can0 restarts)" -eq 1 ] || fail "restart not counted"
 
 echo "== bus-off with restart-ms"
 ip link set can0 down
 can_up can0 125000 restart-ms 100
-echo 1000 >"$sim/bus_errors"
+echo 1000 >"$SIM/bus_errors"
 cansend can0 123#22
 wait_for 30 restarted || { show can0; fail "no automatic restart after bus-off"; }
-echo 0 >"$sim/bus_errors"
+echo 0 >"$SIM/bus_errors"
 ip link set can0 down
 ip link set can1 down
 
@@ -95,7 +78,7 @@ dump_start can1 1 /tmp/one.txt
 cansend can0 456#C0FFEE
 dump_wait
 grep -q '456 *\[3\] *C0 FF EE' /tmp/one.txt || fail "no traffic after the errors"
-state_is can0 ERROR-ACTIVE || fail "can0 not error-active after clean traffic"
+can_state_is can0 ERROR-ACTIVE || fail "can0 not error-active after clean traffic"
 show can0
 show can1
 echo "driver-busoff: ok"

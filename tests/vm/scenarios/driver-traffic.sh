@@ -18,8 +18,6 @@ set -eu
 
 burst=30
 
-stat() { cat "/sys/class/net/$1/statistics/$2"; }
-
 show() {
 	ip -details -statistics link show can0
 	ip -details -statistics link show can1
@@ -60,7 +58,7 @@ flood() {
 
 # grew IF COUNTER BEFORE EXPECTED: COUNTER of IF grew by EXPECTED.
 grew() {
-	_now=$(stat "$1" "$2")
+	_now=$(if_stat "$1" "$2")
 	[ $((_now - $3)) -eq "$4" ] || { show; fail "$1 $2 grew by $((_now - $3)), expected $4"; }
 }
 
@@ -74,9 +72,9 @@ fi
 
 for bitrate in $bitrates; do
 	echo "== $bitrate bit/s"
-	tx0=$(stat can0 tx_packets) rx1=$(stat can1 rx_packets)
-	tx1=$(stat can1 tx_packets) rx0=$(stat can0 rx_packets)
-	txb0=$(stat can0 tx_bytes) rxb1=$(stat can1 rx_bytes)
+	tx0=$(if_stat can0 tx_packets) rx1=$(if_stat can1 rx_packets)
+	tx1=$(if_stat can1 tx_packets) rx0=$(if_stat can0 rx_packets)
+	txb0=$(if_stat can0 tx_bytes) rxb1=$(if_stat can1 rx_bytes)
 
 	can_up can0 "$bitrate"
 	can_up can1 "$bitrate"
@@ -103,7 +101,7 @@ for bitrate in $bitrates; do
 	grew can1 rx_bytes "$rxb1" $((5 + 8 * burst))
 	for dev in can0 can1; do
 		for counter in rx_errors tx_errors rx_dropped tx_dropped rx_over_errors; do
-			[ "$(stat $dev $counter)" -eq 0 ] || { show; fail "$dev $counter is $(stat $dev $counter)"; }
+			[ "$(if_stat $dev $counter)" -eq 0 ] || { show; fail "$dev $counter is $(if_stat $dev $counter)"; }
 		done
 	done
 

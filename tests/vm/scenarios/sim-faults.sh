@@ -12,14 +12,8 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
+sim=$SIM
 
-counter() {
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
-}
-state() {
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/state
-}
 expect() { # WHAT GOT WANTED
 	[ "$2" -eq "$3" ] || fail "$1 is $2, expected $3"
 }
@@ -46,10 +40,10 @@ grep -q '123 *\[1\] *AA$' /tmp/be.txt || fail "can1 did not receive 123#AA"
 expect "bus_errors left" "$(cat $sim/bus_errors)" 0
 expect "error-injected lines" "$(monitor_count error-injected)" 3
 expect "ok lines" "$(monitor_count ok)" 1
-expect "chip0 tx_errors" "$(counter 0 tx_errors)" 3
-expect "chip1 rx_errors" "$(counter 1 rx_errors)" 3
-expect "chip0 TEC" "$(state 0 tec)" $((3 * 8 - 1))
-expect "chip1 REC" "$(state 1 rec)" $((3 - 1))
+expect "chip0 tx_errors" "$(sim_counter 0 tx_errors)" 3
+expect "chip1 rx_errors" "$(sim_counter 1 rx_errors)" 3
+expect "chip0 TEC" "$(sim_state 0 tec)" $((3 * 8 - 1))
+expect "chip1 REC" "$(sim_state 1 rec)" $((3 - 1))
 expect "can1 rx_packets" "$(cat /sys/class/net/can1/statistics/rx_packets)" 1
 
 echo "== no_ack: the sender turns error-passive, the receivers take every copy"
@@ -62,15 +56,15 @@ rx_before=$(cat /sys/class/net/can1/statistics/rx_packets)
 echo 1 >$sim/no_ack
 cansend can0 124#BB
 sleep 1
-expect "chip0 TEC" "$(state 0 tec)" 128
+expect "chip0 TEC" "$(sim_state 0 tec)" 128
 ip -details link show can0 | grep -q 'state ERROR-PASSIVE' ||
 	fail "mcp251x does not report can0 error-passive"
 echo 0 >$sim/no_ack
 sleep 0.5
-expect "chip0 TEC" "$(state 0 tec)" 127
-acks=$(counter 0 tx_errors)
+expect "chip0 TEC" "$(sim_state 0 tec)" 127
+acks=$(sim_counter 0 tx_errors)
 copies=$(($(cat /sys/class/net/can1/statistics/rx_packets) - rx_before))
-stored=$(counter 1 frames_rx) lost=$(counter 1 overflows)
+stored=$(sim_counter 1 frames_rx) lost=$(sim_counter 1 overflows)
 echo "$acks ACK errors; chip1 stored $stored copies, lost $lost; can1 got $copies"
 [ "$acks" -gt 16 ] || fail "only $acks ACK errors"
 # 16 ACK errors take TEC to 128; every later one is a copy, plus the good frame
@@ -88,7 +82,7 @@ cansend can0 125#CC
 sleep 1
 [ "$(monitor_count error-ack)" -gt 0 ] || fail "a lone node's frame was acknowledged"
 expect "ok lines" "$(monitor_count ok)" 0
-expect "chip0 TEC" "$(state 0 tec)" 128
+expect "chip0 TEC" "$(sim_state 0 tec)" 128
 rx_before=$(cat /sys/class/net/can1/statistics/rx_packets)
 ip link set can1 up
 sleep 0.5
@@ -110,13 +104,13 @@ while [ "$(cat $sim/flood)" -ne 0 ]; do
 done
 dump_wait
 for i in 0 1; do
-	stored=$(counter $i frames_rx) lost=$(counter $i overflows)
+	stored=$(sim_counter $i frames_rx) lost=$(sim_counter $i overflows)
 	echo "chip$i: $stored stored, $lost overflowed"
 	expect "chip$i frames_rx + overflows" $((stored + lost)) "$n"
 done
 grep -v ' phantom 100#' $sim/monitor || true
 expect "phantom frames on the bus" "$(grep -c ' phantom 100#[0-9A-F]* 125000 [0-9]* ok$' $sim/monitor)" "$n"
-expect "can1 frames received" "$(wc -l </tmp/fl.txt)" "$(counter 1 frames_rx)"
+expect "can1 frames received" "$(wc -l </tmp/fl.txt)" "$(sim_counter 1 frames_rx)"
 
 echo "== mode_delay_us: slower than mcp251x waits"
 ip link set can1 down

@@ -12,7 +12,7 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
+sim=$SIM
 
 [ "$VM_SIM" = 1 ] || fail "the simulated chips are not loaded"
 [ -d $sim/chip0 ] && [ -d $sim/chip1 ] || fail "no debugfs control surface"
@@ -20,11 +20,6 @@ for i in 0 1; do
 	drv=$(basename "$(readlink "/sys/class/net/can$i/device/driver")")
 	[ "$drv" = mcp251x ] || fail "can$i is bound to '$drv', not mcp251x"
 done
-
-# counter CHIP NAME: one value from chipN/counters
-counter() {
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
-}
 
 # guest_ms: the guest's clock in ms (/proc/uptime counts in 10 ms steps)
 guest_ms() {
@@ -87,17 +82,17 @@ for i in 0 1; do
 	echo "chip$i:"
 	cat $sim/chip$i/counters
 done
-[ "$(counter 0 frames_tx)" -eq 1 ] || fail "chip0 frames_tx $(counter 0 frames_tx), expected 1"
-[ "$(counter 1 frames_tx)" -eq 1 ] || fail "chip1 frames_tx $(counter 1 frames_tx), expected 1"
-[ "$(counter 0 frames_rx)" -eq 2 ] || fail "chip0 frames_rx $(counter 0 frames_rx), expected 2"
-[ "$(counter 1 frames_rx)" -eq 2 ] || fail "chip1 frames_rx $(counter 1 frames_rx), expected 2"
+[ "$(sim_counter 0 frames_tx)" -eq 1 ] || fail "chip0 frames_tx $(sim_counter 0 frames_tx), expected 1"
+[ "$(sim_counter 1 frames_tx)" -eq 1 ] || fail "chip1 frames_tx $(sim_counter 1 frames_tx), expected 1"
+[ "$(sim_counter 0 frames_rx)" -eq 2 ] || fail "chip0 frames_rx $(sim_counter 0 frames_rx), expected 2"
+[ "$(sim_counter 1 frames_rx)" -eq 2 ] || fail "chip1 frames_rx $(sim_counter 1 frames_rx), expected 2"
 for i in 0 1; do
-	[ "$(counter $i interrupts)" -gt 0 ] || fail "chip$i raised no interrupt"
-	[ "$(counter $i irqs_delivered)" -gt 0 ] || fail "chip$i: no interrupt reached Linux"
-	[ "$(counter $i spi_transfers)" -gt 0 ] || fail "chip$i saw no SPI transfer"
-	[ "$(counter $i overflows)" -eq 0 ] || fail "chip$i overflowed"
-	[ "$(counter $i spi_mode_errors)" -eq 0 ] || fail "chip$i: wrong SPI mode"
-	[ "$(counter $i spi_overspeed)" -eq 0 ] || fail "chip$i: SPI clock too fast"
+	[ "$(sim_counter $i interrupts)" -gt 0 ] || fail "chip$i raised no interrupt"
+	[ "$(sim_counter $i irqs_delivered)" -gt 0 ] || fail "chip$i: no interrupt reached Linux"
+	[ "$(sim_counter $i spi_transfers)" -gt 0 ] || fail "chip$i saw no SPI transfer"
+	[ "$(sim_counter $i overflows)" -eq 0 ] || fail "chip$i overflowed"
+	[ "$(sim_counter $i spi_mode_errors)" -eq 0 ] || fail "chip$i: wrong SPI mode"
+	[ "$(sim_counter $i spi_overspeed)" -eq 0 ] || fail "chip$i: SPI clock too fast"
 done
 
 # Every interrupt was served, so INT is back high, and libgpiod reads it so.

@@ -13,30 +13,14 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
+sim=$SIM
 gpiochip=mcp2510-sim
 int1=1   # line INT1: the INT lines come first, one per chip,
 rx0bf1=3 # then RX0BF0, RX0BF1, ...
 
-counter() {
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
-}
-state() {
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/state
-}
 expect_counter() {
-	[ "$(counter "$1" "$2")" -eq "$3" ] ||
-		fail "chip$1 $2 is $(counter "$1" "$2"), expected $3"
-}
-
-# wait_for CONDITION...: up to 5 s for the command to succeed
-wait_for() {
-	_n=0
-	until "$@"; do
-		_n=$((_n + 1))
-		[ $_n -le 50 ] || return 1
-		sleep 0.1
-	done
+	[ "$(sim_counter "$1" "$2")" -eq "$3" ] ||
+		fail "chip$1 $2 is $(sim_counter "$1" "$2"), expected $3"
 }
 
 # spi BYTES: one write(), so one chip-select-low period; BYTES as printf
@@ -47,7 +31,7 @@ spi() {
 
 # state_is CHIP NAME VALUE
 state_is() {
-	[ "$(state "$1" "$2")" = "$3" ]
+	[ "$(sim_state "$1" "$2")" = "$3" ]
 }
 
 line_watched() {
@@ -58,7 +42,7 @@ line_watched() {
 watch_int1() {
 	gpiomon -b -n 1 -f "$gpiochip" "$int1" >"$1" &
 	MON_PID=$!
-	wait_for line_watched || fail "gpiomon did not request INT1"
+	wait_for 5 line_watched || fail "gpiomon did not request INT1"
 }
 
 echo "== reload with spidev_node=1"
@@ -74,12 +58,12 @@ for bad in nodes=0 nodes=9 variant=mcp2516 driver=spidev time_scale=0 \
 done
 insmod $ko nodes=2 variant="$VM_VARIANT" \
 	driver="$VM_DRIVER" spidev_node=1 || fail "cannot load mcp2510-sim"
-wait_for test -e /sys/class/net/can0 || fail "chip 0 did not become can0"
+wait_for 5 test -e /sys/class/net/can0 || fail "chip 0 did not become can0"
 [ ! -e /sys/class/net/can1 ] || fail "chip 1 became a CAN interface"
 
-dev=/dev/spidev$(state 1 spi_bus).$(state 1 spi_cs)
-wait_for test -c "$dev" || fail "$dev did not appear"
-spidev=$(state 1 spi_device)
+dev=/dev/spidev$(sim_state 1 spi_bus).$(sim_state 1 spi_cs)
+wait_for 5 test -c "$dev" || fail "$dev did not appear"
+spidev=$(sim_state 1 spi_device)
 [ "$(basename "$(readlink /sys/bus/spi/devices/"$spidev"/driver)")" = spidev ] ||
 	fail "$spidev is not bound to spidev"
 gpioinfo "$gpiochip"
@@ -106,27 +90,27 @@ spi '\002\140\140'             # RXB0CTRL: receive any frame
 spi '\002\061\044\140\000\000\001\021' # TXB0: 123#11
 spi '\002\014\005'             # BFPCTRL: RX0BF signals "RXB0 full"
 spi '\002\017\100'             # CANCTRL: REQOP loopback
-wait_for state_is 1 opmode loopback || fail "chip1 did not enter loopback"
-[ "$(state 1 bitrate)" -eq 125000 ] || fail "chip1 bit rate $(state 1 bitrate)"
+wait_for 5 state_is 1 opmode loopback || fail "chip1 did not enter loopback"
+[ "$(sim_state 1 bitrate)" -eq 125000 ] || fail "chip1 bit rate $(sim_state 1 bitrate)"
 
 watch_int1 /tmp/edge1.txt
 spi '\201' # RTS TXB0
 wait "$MON_PID" || fail "gpiomon failed"
 cat /tmp/edge1.txt
 grep -q 'FALLING EDGE' /tmp/edge1.txt || fail "gpiomon saw no falling edge on INT1"
-[ "$(state 1 int)" -eq 0 ] || fail "INT1 not asserted"
+[ "$(sim_state 1 int)" -eq 0 ] || fail "INT1 not asserted"
 expect_counter 1 frames_rx 1
 expect_counter 1 interrupts 1
 [ "$(gpioget "$gpiochip" "$rx0bf1")" = 0 ] || fail "RX0BF1 does not show RXB0 full"
 
 echo "== int_edge_miss"
 spi '\002\054\000' # CANINTF = 0: INT rises, RXB0 is free again
-[ "$(state 1 int)" -eq 1 ] || fail "INT1 still asserted"
+[ "$(sim_state 1 int)" -eq 1 ] || fail "INT1 still asserted"
 [ "$(gpioget "$gpiochip" "$rx0bf1")" = 1 ] || fail "RX0BF1 still low with RXB0 free"
 echo 1 >$sim/chip1/int_edge_miss
 watch_int1 /tmp/edge2.txt
 spi '\201' # the second frame: this falling edge is lost
-wait_for state_is 1 int 0 || fail "no second frame"
+wait_for 5 state_is 1 int 0 || fail "no second frame"
 sleep 1
 kill -0 "$MON_PID" 2>/dev/null || fail "gpiomon saw the edge that was to be missed"
 [ "$(cat $sim/chip1/int_edge_miss)" -eq 0 ] || fail "int_edge_miss not used up"
@@ -142,10 +126,10 @@ echo "== power loss"
 [ "$(gpioget "$gpiochip" "$int1")" = 0 ] || fail "INT1 not asserted before the power loss"
 echo 0 >$sim/chip1/power
 [ "$(gpioget "$gpiochip" "$int1")" = 1 ] || fail "INT1 of an unpowered chip is not pulled high"
-[ "$(state 1 ready)" = 0 ] || fail "an unpowered chip claims to be ready"
+[ "$(sim_state 1 ready)" = 0 ] || fail "an unpowered chip claims to be ready"
 echo 1 >$sim/chip1/power
-wait_for state_is 1 ready 1 || fail "chip1 did not start up after power-on"
-[ "$(state 1 opmode)" = config ] || fail "chip1 is not in configuration mode after power-on"
+wait_for 5 state_is 1 ready 1 || fail "chip1 did not start up after power-on"
+[ "$(sim_state 1 opmode)" = config ] || fail "chip1 is not in configuration mode after power-on"
 [ "$(gpioget "$gpiochip" "$int1")" = 1 ] || fail "INT1 asserted after power-on"
 
 echo "== chip 0 still works as can0"
