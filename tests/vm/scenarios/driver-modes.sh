@@ -107,7 +107,7 @@ can_up can1 125000
 : >"$SIM/monitor"
 rx0=$(if_stat can0 rx_packets) rx1=$(if_stat can1 rx_packets)
 # The stack's echo and the chip's copy: two identical lines.
-dump_start can0 2 /tmp/lb.txt -T 3000
+dump_start can0 2 /tmp/lb.txt
 dump0=$DUMP_PID
 dump_start can1 1 /tmp/lb1.txt -T 2000
 cansend can0 456#C0FFEE
