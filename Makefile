@@ -47,6 +47,7 @@ include tests/soak/soak.mk
 include dts/dts.mk
 include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
+include tests/bench/bench.mk
 
 check: deps
 	@set -e; for step in $(CHECK_STEPS); do \

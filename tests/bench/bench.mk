@@ -1,0 +1,28 @@
+# tests/bench/bench.mk: make bench, figures rather than tests
+# (docs/performance.md).  Not part of make check: it asserts nothing.
+#
+#   make bench [BENCH_FRAMES=100] [BENCH_CPU_FRAMES=1000]
+#              [BENCH_TIME_SCALE=10] [BENCH_BITRATES="10000 ... 1000000"]
+#
+# Boots Debian's 6.1 kernel four times (mcp2510.ko and mainline mcp251x,
+# each on a simulated MCP2510 and MCP2515), runs the userspace port's bench
+# on the host, prints a table and writes build/bench/summary.json and the
+# figures and plot of docs/performance.md.
+
+BENCH_OUT := $(BUILD)/bench
+BENCH_FRAMES ?= 100
+BENCH_CPU_FRAMES ?= 1000
+BENCH_TIME_SCALE ?= 10
+BENCH_BITRATES ?= 10000 20000 50000 100000 125000 250000 500000 800000 1000000
+BENCH_PACKAGES := gnuplot-nox python3
+
+.PHONY: bench
+bench: vm-kernel-6.1
+	@$(ENSURE) $(BENCH_PACKAGES)
+	@$(MAKE) --no-print-directory modules-rig userspace VM_KERNELS=6.1
+	@BENCH_OUT=$(BENCH_OUT) BENCH_FRAMES=$(BENCH_FRAMES) \
+		BENCH_CPU_FRAMES=$(BENCH_CPU_FRAMES) \
+		BENCH_TIME_SCALE=$(BENCH_TIME_SCALE) \
+		BENCH_BITRATES="$(BENCH_BITRATES)" \
+		BENCH_DOC=$(TOP)/docs/performance.md \
+		$(TOP)/tests/bench/run

@@ -1,0 +1,154 @@
+#!/bin/sh
+# The guest half of "make bench" (tests/bench/run boots it): one simulated
+# chip on the bus with the phantom node, bound to whichever driver vm-run
+# loaded.  Prints one "bench: WHAT key=value..." line per measurement on the
+# console for tests/bench/report.py; it asserts nothing about speed.
+#
+# /extra/bench.conf sets FRAMES, RX_BITRATES, TX_BITRATES, CPU_FRAMES,
+# CPU_BITRATE and TIME_SCALE (the value given to mcp2510-sim.ko).
+#
+# The script stays quiet while a burst runs (one sleep, no polling): under
+# TCG every fork of busybox costs the guest tens of milliseconds, which
+# would swamp the CPU figures of the driver.
+set -eu
+. /lib/rig.sh
+. /extra/bench.conf
+
+# bits of the longest 8-byte standard frame, stuffing and intermission
+# included: an upper bound for how long a burst takes on the bus
+FRAME_BITS_MAX=135
+FLOOD_FRAME=123#0011223344556677
+
+report() {
+	echo "bench: $*"
+}
+
+# cpu_mark: remember the time since boot and the CPUs' summed idle time
+# (/proc/uptime: nohz idle accounting, exact rather than sampled by the
+# tick).  cpu_busy sets BUSY to the busy CPU time and the elapsed time
+# since cpu_mark, in hundredths of a second.  Shell builtins only.
+cpu_mark() {
+	read -r MARK_UP MARK_IDLE </proc/uptime
+}
+cpu_busy() {
+	read -r _up _idle </proc/uptime
+	# "s.hh" - "s.hh" in hundredths; the 1 keeps "08" from reading as octal
+	_win=$(((${_up%.*} - ${MARK_UP%.*}) * 100 + 1${_up#*.} - 1${MARK_UP#*.}))
+	_idl=$(((${_idle%.*} - ${MARK_IDLE%.*}) * 100 + 1${_idle#*.} - 1${MARK_IDLE#*.}))
+	BUSY="busy_cs=$((NCPUS * _win - _idl)) window_cs=$_win"
+}
+
+# burst_seconds COUNT BITRATE: how long COUNT frames take on the bus, in
+# real seconds at TIME_SCALE, plus a little.
+burst_seconds() {
+	awk -v n="$1" -v br="$2" -v s="$TIME_SCALE" -v b="$FRAME_BITS_MAX" \
+		'BEGIN { printf "%.2f\n", n * b * s / br + 0.3 }'
+}
+
+counters() {
+	tr '\n' ' ' <"$SIM/chip0/counters" | sed 's/\([a-z_]*\) \([0-9]*\) /\1=\2 /g'
+}
+
+flood_done() { [ "$(cat "$SIM/flood")" -eq 0 ]; }
+
+# sent_all COUNT: chip 0 has sent COUNT frames since its counters were reset.
+sent_all() { [ "$(sim_counter 0 frames_tx)" -ge "$1" ]; }
+
+# quiet_wait SECONDS COMMAND...: sleep through the expected time, then poll
+# COMMAND (a slow guest) for up to a minute.
+quiet_wait() {
+	_s=$1
+	shift
+	sleep "$_s"
+	wait_for 60 "$@"
+}
+
+start_at() {
+	ip link set can0 down
+	can_up can0 "$1"
+	echo off >"$SIM/phantom"
+	echo on >"$SIM/phantom"
+	echo 0 >"$SIM/chip0/counters"
+	echo 0 >"$SIM/monitor"
+}
+
+# idle SECONDS: the same steps as a burst of that length, without one:
+# the guest's background load and the script's own forks.
+idle() {
+	cpu_mark
+	quiet_wait "$1" flood_done
+	sleep 0.5
+	cpu_busy
+	report idle "seconds=$1 $BUSY"
+}
+
+# rx WHAT BITRATE COUNT: the phantom floods COUNT frames back to back to
+# can0; WHAT names the measurement.
+rx() {
+	start_at "$2"
+	_secs=$(burst_seconds "$3" "$2")
+	rx0=$(if_stat can0 rx_packets)
+	cpu_mark
+	echo "$3 $FLOOD_FRAME $2" >"$SIM/flood"
+	quiet_wait "$_secs" flood_done ||
+		fail "the flood at $2 bit/s never ended"
+	# what the chip holds still reaches the stack after the last frame
+	sleep 0.5
+	cpu_busy
+	report "$1" "bitrate=$2 frames=$3 seconds=$_secs $BUSY" \
+		"received=$(($(if_stat can0 rx_packets) - rx0)) $(counters)"
+}
+
+# tx WHAT BITRATE COUNT: cangen sends COUNT frames as fast as can0 takes
+# them; the phantom acknowledges and the bus monitor times them.  The
+# queue holds the whole burst: with the default of 10 frames, cangen -p
+# spins on ENOBUFS (poll reports the socket writable) and its spinning,
+# not the driver, would be the CPU figure.
+tx() {
+	ip link set can0 txqueuelen $(($3 + 16))
+	start_at "$2"
+	_secs=$(burst_seconds "$3" "$2")
+	cpu_mark
+	cangen -g 0 -p 1000 -n "$3" -I 123 -L 8 -D 0011223344556677 can0 ||
+		fail "cangen at $2 bit/s"
+	quiet_wait "$_secs" sent_all "$3" ||
+		fail "can0 sent $(sim_counter 0 frames_tx) of $3 frames at $2 bit/s"
+	sleep 0.5
+	cpu_busy
+	report "$1" "bitrate=$2 frames=$3 seconds=$_secs $BUSY" \
+		"$(counters) $(monitor_timing)"
+}
+
+# From chip 0's frames in the monitor (the last 256): how many, their mean
+# length in bits, the span from the first start to the last start, the
+# idle time between them, all in bus nanoseconds.
+monitor_timing() {
+	awk '$3 == "chip0" && $7 == "ok" {
+		if (n == 0) first = $1
+		else idle += $1 - end
+		n++; bits += $6; last = $1; end = $2
+	}
+	END {
+		printf "mon_frames=%d mon_bits=%.2f mon_span_ns=%.0f mon_idle_ns=%.0f\n",
+			n, n ? bits / n : 0, last - first, idle
+	}' "$SIM/monitor"
+}
+
+NCPUS=$(grep -c '^cpu[0-9]' /proc/stat)
+report setup "driver=$VM_DRIVER variant=$VM_VARIANT time_scale=$TIME_SCALE" \
+	"frames=$FRAMES cpu_frames=$CPU_FRAMES cpus=$NCPUS" \
+	"clocksource=$(cat /sys/devices/system/clocksource/clocksource0/current_clocksource)"
+can_up can0 "$CPU_BITRATE"
+# CPU and SPI cost at steady state: long bursts at a bit rate every driver
+# keeps up with, and the same time without traffic to subtract.
+idle "$(burst_seconds "$CPU_FRAMES" "$CPU_BITRATE")"
+rx cpu-rx "$CPU_BITRATE" "$CPU_FRAMES"
+tx cpu-tx "$CPU_BITRATE" "$CPU_FRAMES"
+for br in $RX_BITRATES; do
+	rx rx "$br" "$FRAMES"
+done
+for br in $TX_BITRATES; do
+	tx tx "$br" "$FRAMES"
+done
+ip link set can0 down
+report "done"

@@ -1,0 +1,271 @@
+#!/usr/bin/env python3
+"""Turn the logs of one "make bench" into figures.
+
+    report.py OUTDIR [DOC]
+
+Reads OUTDIR/<driver>-<chip>.console.log (the "bench:" lines of
+tests/bench/guest.sh) and OUTDIR/userspace-<chip>.txt (mcp2510ctl bench),
+prints a table, writes OUTDIR/summary.json and the plot's data, draws
+docs/performance.svg with gnuplot and, given DOC, replaces the figures
+between DOC's "bench:begin" and "bench:end" markers.
+"""
+import json
+import os
+import re
+import subprocess
+import sys
+
+DRIVERS = ("mcp2510", "mcp251x")
+CHIPS = ("mcp2510", "mcp2515")
+KEY_BITRATES = (125000, 500000, 1000000)
+BEGIN = "<!-- bench:begin (written by make bench) -->"
+END = "<!-- bench:end -->"
+
+
+def parse_console(path):
+    """The guest's measurements: {what: [fields, ...]}."""
+    found = {}
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            m = re.match(r"^bench: (\S+)(.*)$", line.strip())
+            if not m:
+                continue
+            fields = {}
+            for item in m.group(2).split():
+                key, _, value = item.partition("=")
+                try:
+                    fields[key] = float(value)
+                except ValueError:
+                    fields[key] = value
+            found.setdefault(m.group(1), []).append(fields)
+    if "done" not in found:
+        sys.exit(f"report: {path} does not hold a complete run")
+    return found
+
+
+def per_frame(value, frames):
+    return round(value / frames, 2) if frames else None
+
+
+def cpu_us_per_frame(run, idle, frames):
+    """Busy CPU time of a burst less that of the same time without one."""
+    baseline = idle["busy_cs"] * run["window_cs"] / idle["window_cs"]
+    return round((run["busy_cs"] - baseline) * 1e4 / frames, 1) if frames else None
+
+
+def tx_utilisation(run):
+    """Frames per second on the bus over the most that length allows."""
+    n = run["mon_frames"]
+    if n < 2 or run["mon_span_ns"] <= 0:
+        return None, None
+    per_second = (n - 1) * 1e9 / run["mon_span_ns"]
+    most = run["bitrate"] / run["mon_bits"]
+    return round(per_second / most, 4), round(run["mon_idle_ns"] / (n - 1) / 1e3, 2)
+
+
+def driver_figures(log):
+    idle = log["idle"][0]
+    rx = log["cpu-rx"][0]
+    tx = log["cpu-tx"][0]
+    fig = {
+        "rx_spi_bytes_per_frame": per_frame(rx["spi_bytes"], rx["frames_rx"]),
+        "rx_spi_transfers_per_frame": per_frame(rx["spi_transfers"], rx["frames_rx"]),
+        "tx_spi_bytes_per_frame": per_frame(tx["spi_bytes"], tx["frames_tx"]),
+        "tx_spi_transfers_per_frame": per_frame(tx["spi_transfers"], tx["frames_tx"]),
+        "irqs_per_frame": per_frame(rx["irqs_delivered"], rx["frames_rx"]),
+        "tx_irqs_per_frame": per_frame(tx["irqs_delivered"], tx["frames_tx"]),
+        "cpu_us_per_frame": cpu_us_per_frame(rx, idle, rx["received"]),
+        "tx_cpu_us_per_frame": cpu_us_per_frame(tx, idle, tx["frames_tx"]),
+        "cpu_burst_loss": round(1 - rx["received"] / rx["frames"], 4),
+        "tx_bus_utilisation": {},
+        "tx_idle_us_per_gap": {},
+        "rx_loss": {},
+        "rx_overflows": {},
+    }
+    lossless = 0
+    for run in sorted(log.get("rx", []), key=lambda r: r["bitrate"]):
+        rate = str(int(run["bitrate"]))
+        loss = round(1 - run["received"] / run["frames"], 4)
+        fig["rx_loss"][rate] = loss
+        fig["rx_overflows"][rate] = int(run["overflows"])
+        if loss == 0 and lossless == len(fig["rx_loss"]) - 1:
+            lossless += 1
+            fig["rx_max_lossless_bitrate"] = int(run["bitrate"])
+    fig.setdefault("rx_max_lossless_bitrate", 0)
+    for run in sorted(log.get("tx", []), key=lambda r: r["bitrate"]):
+        rate = str(int(run["bitrate"]))
+        util, idle_us = tx_utilisation(run)
+        fig["tx_bus_utilisation"][rate] = util
+        fig["tx_idle_us_per_gap"][rate] = idle_us
+    return fig
+
+
+def userspace_figures(path):
+    text = open(path, encoding="utf-8").read()
+
+    def grab(pattern):
+        m = re.search(pattern, text)
+        if not m:
+            sys.exit(f"report: {path}: no match for {pattern}")
+        return float(m.group(1))
+
+    # simulated time stands still while the program works: the bus waits
+    # for it, so neither loss nor bus utilisation can be measured
+    return {
+        "rx_spi_bytes_per_frame": grab(r"rx: [\d.]+ spi transfers/frame, ([\d.]+)"),
+        "rx_spi_transfers_per_frame": grab(r"rx: ([\d.]+) spi transfers"),
+        "tx_spi_bytes_per_frame": grab(r"tx: [\d.]+ spi transfers/frame, ([\d.]+)"),
+        "tx_spi_transfers_per_frame": grab(r"tx: ([\d.]+) spi transfers"),
+        "irqs_per_frame": None,
+        "cpu_us_per_frame": grab(r"cpu: ([\d.]+) us/frame"),
+        "tx_bus_utilisation": {},
+        "rx_loss": {},
+        "rx_max_lossless_bitrate": None,
+    }
+
+
+def collect(out):
+    summary = {}
+    setup = None
+    for driver in DRIVERS:
+        chips = {}
+        for chip in CHIPS:
+            log = parse_console(os.path.join(out, f"{driver}-{chip}.console.log"))
+            setup = setup or log["setup"][0]
+            chips[chip] = driver_figures(log)
+        summary[driver] = dict(chips["mcp2510"], chip="mcp2510", mcp2515=chips["mcp2515"])
+    chips = {c: userspace_figures(os.path.join(out, f"userspace-{c}.txt")) for c in CHIPS}
+    summary["userspace"] = dict(chips["mcp2510"], chip="mcp2510", mcp2515=chips["mcp2515"])
+    summary["setup"] = {
+        "kernel": "6.1",
+        "time_scale": int(setup["time_scale"]),
+        "frames_per_bitrate": int(setup["frames"]),
+        "cpu_frames": int(setup["cpu_frames"]),
+        "guest_cpus": int(setup["cpus"]),
+        "clocksource": setup["clocksource"],
+    }
+    return summary
+
+
+def fmt(value, spec="{:.2f}"):
+    return "-" if value is None else spec.format(value)
+
+
+def pct(value):
+    return "-" if value is None else f"{100 * value:.1f}%"
+
+
+def rows(summary):
+    """(driver, chip, figures) in table order."""
+    for driver in DRIVERS + ("userspace",):
+        for chip in CHIPS:
+            fig = summary[driver]
+            yield driver, chip, fig if chip == "mcp2510" else fig["mcp2515"]
+
+
+def cost_table(summary):
+    lines = ["| driver | chip | RX SPI bytes | RX transfers | TX SPI bytes | TX transfers"
+             " | IRQs per RX frame | IRQs per TX frame | CPU µs per RX frame | CPU µs per TX frame |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for driver, chip, f in rows(summary):
+        lines.append(
+            f"| {driver} | {chip} | {fmt(f['rx_spi_bytes_per_frame'])}"
+            f" | {fmt(f['rx_spi_transfers_per_frame'])} | {fmt(f['tx_spi_bytes_per_frame'])}"
+            f" | {fmt(f['tx_spi_transfers_per_frame'])} | {fmt(f['irqs_per_frame'])}"
+            f" | {fmt(f.get('tx_irqs_per_frame'))} | {fmt(f['cpu_us_per_frame'], '{:.0f}')}"
+            f" | {fmt(f.get('tx_cpu_us_per_frame'), '{:.0f}')} |")
+    return lines
+
+
+def rate_table(summary, key, title, extra=None):
+    rates = sorted({int(r) for driver, _, f in rows(summary)
+                    if driver != "userspace" for r in f[key]})
+    head = f"| {title} | chip | " + " | ".join(f"{r // 1000}k" for r in rates)
+    head += " | zero loss up to |" if extra else " |"
+    lines = [head, "|---|---|" + "---|" * (len(rates) + (1 if extra else 0))]
+    for driver, chip, f in rows(summary):
+        if driver == "userspace":
+            continue
+        cells = [pct(f[key].get(str(r))) for r in rates]
+        if key == "tx_bus_utilisation":
+            cells = [f"{c} ({fmt(f['tx_idle_us_per_gap'].get(str(r)), '{:.0f}')} µs)"
+                     for c, r in zip(cells, rates)]
+        if key == "rx_loss":
+            cells = [f"{c} ({f['rx_overflows'].get(str(r), '-')})" for c, r in zip(cells, rates)]
+        line = f"| {driver} | {chip} | " + " | ".join(cells)
+        if extra:
+            line += f" | {extra(f)} |"
+        lines.append(line + ("" if extra else " |"))
+    return lines
+
+
+def tables(summary):
+    s = summary["setup"]
+    out = [f"Debian {s['kernel']} kernel in QEMU (TCG, {s['guest_cpus']} CPUs, clock source"
+           f" {s['clocksource']}), mcp2510-sim.ko time_scale={s['time_scale']};"
+           f" {s['frames_per_bitrate']} frames per bit rate, {s['cpu_frames']}"
+           " for the per-frame costs (125 kbit/s). Userspace port: host, in-process model.", ""]
+    out += ["Per 8-byte standard frame:", ""] + cost_table(summary) + [""]
+    out += ["TX bus utilisation (mean idle bus time between frames, bus time):", ""]
+    out += rate_table(summary, "tx_bus_utilisation", "TX") + [""]
+    out += ["RX loss of a phantom flood (overflows):", ""]
+    out += rate_table(summary, "rx_loss", "RX",
+                      lambda f: f"{f['rx_max_lossless_bitrate'] // 1000} kbit/s"
+                      if f["rx_max_lossless_bitrate"] else "none") + [""]
+    return out
+
+
+def write_plot_data(out, summary):
+    path = os.path.join(out, "plot.dat")
+    with open(path, "w", encoding="utf-8") as f:
+        for driver in DRIVERS:
+            for chip in CHIPS:
+                fig = summary[driver] if chip == "mcp2510" else summary[driver]["mcp2515"]
+                f.write(f"# {driver}.ko on {chip.upper()}: bitrate util_pct loss_pct\n")
+                for rate in sorted(fig["rx_loss"], key=int):
+                    util = fig["tx_bus_utilisation"].get(rate)
+                    f.write(f"{rate} {'NaN' if util is None else 100 * util}"
+                            f" {100 * fig['rx_loss'][rate]}\n")
+                f.write("\n\n")
+    return path
+
+
+def plot(out, summary, svg):
+    data = write_plot_data(out, summary)
+    here = os.path.dirname(os.path.abspath(__file__))
+    subprocess.run(["gnuplot", "-e", f"data='{data}'; out='{svg}';"
+                    f" scale={summary['setup']['time_scale']}",
+                    os.path.join(here, "plot.gp")], check=True)
+
+
+def update_doc(doc, lines):
+    text = open(doc, encoding="utf-8").read()
+    start, end = text.find(BEGIN), text.find(END)
+    if start < 0 or end < start:
+        sys.exit(f"report: {doc} lacks the {BEGIN} ... {END} markers")
+    text = text[:start + len(BEGIN)] + "\n" + "\n".join(lines) + "\n" + text[end:]
+    with open(doc, "w", encoding="utf-8") as f:
+        f.write(text)
+
+
+def main():
+    if len(sys.argv) not in (2, 3):
+        sys.exit(__doc__)
+    out = sys.argv[1]
+    summary = collect(out)
+    with open(os.path.join(out, "summary.json"), "w", encoding="utf-8") as f:
+        json.dump(summary, f, indent=2, sort_keys=True)
+        f.write("\n")
+    lines = tables(summary)
+    print("\n".join(lines))
+    svg = os.path.join(out, "performance.svg")
+    if len(sys.argv) == 3:
+        doc = sys.argv[2]
+        svg = os.path.join(os.path.dirname(os.path.abspath(doc)), "performance.svg")
+        update_doc(doc, lines)
+    plot(out, summary, svg)
+    print(f"bench: {os.path.join(out, 'summary.json')}, {svg}")
+
+
+if __name__ == "__main__":
+    main()
