@@ -13,7 +13,9 @@
  * recovery from bus-off is seen at the next interrupt of any kind).
  *
  * Flags are cleared with one BIT MODIFY naming only the flags handled, so
- * a flag raised meanwhile survives and asserts INT again.  A buffer whose
+ * a flag raised meanwhile survives and asserts INT again.  ERRIF is the
+ * exception: it is cleared on its own before EFLG is read again for the
+ * state (see handle_errors()).  A buffer whose
  * RXnIF is set is never overwritten by the chip, so reading it before the
  * clear cannot lose a frame.
  *
@@ -153,18 +155,45 @@ static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 	return clear;
 }
 
+#define EFLG_RXOVR_ALL	(MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR)
+
+/*
+ * Clear ERRIF, then read the EFLG the state is taken from.  A change after
+ * the pass read the flags (TEC crossing 128 while it runs) raises ERRIF
+ * again: read in the other order, the clear would take that ERRIF with it
+ * and the change would go unseen.  The second read also keeps a single
+ * corrupted read from reporting a state the chip never entered.  RXnOVR
+ * goes first: ERRIF must not be cleared while RXnOVR still stands.
+ */
+static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg)
+{
+	int err;
+
+	if (ovr) {
+		err = mcp2510_reg_modify(chip, MCP2510_REG_EFLG, ovr, 0);
+		if (err)
+			return err;
+	}
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+	if (err)
+		return err;
+	return mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
+}
+
 /*
  * ERRIF reports a worse error state or an overflow; a better state (after
  * bus-off recovery, or as the counters fall) raises no flag, so while the
  * chip is not error-active every full read compares EFLG with the state.
+ * Either way ERRIF is cleared here, not with the pass's other flags.
  */
 static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
 {
 	bool state_due = f->full &&
 			 (f->intf & MCP2510_INT_ERR ||
 			  mcp2510_error_eflg_state(f->eflg) != chip->state);
+	u8 ovr = f->intf & MCP2510_INT_ERR ? f->eflg & EFLG_RXOVR_ALL : 0;
 	struct can_berr_counter bec;
-	u8 ovr = 0;
+	u8 eflg, late;
 	int err;
 
 	if (!state_due && !(f->intf & MCP2510_INT_MERR))
@@ -172,15 +201,20 @@ static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
 	err = mcp2510_berr_counter(chip, &bec);
 	if (err)
 		return err;
-	if (state_due)
-		mcp2510_error_state_update(chip, f->eflg, &bec);
-	if (f->intf & MCP2510_INT_ERR)
-		ovr = mcp2510_error_overflow(chip, f->eflg, &bec);
+	/* reported before the clear: a failed clear reports it again */
+	mcp2510_error_overflow(chip, ovr, &bec);
 	if (f->intf & MCP2510_INT_MERR)
 		mcp2510_error_bus(chip, &bec);
-	/* EFLG first: ERRIF must not be cleared while RXnOVR still stands */
-	if (ovr)
-		return mcp2510_reg_modify(chip, MCP2510_REG_EFLG, ovr, 0);
+	if (!state_due)
+		return 0;
+	err = errif_clear_reread(chip, ovr, &eflg);
+	if (err)
+		return err;
+	mcp2510_error_state_update(chip, eflg, &bec);
+	/* an overflow since the first read: its ERRIF may be gone */
+	late = mcp2510_error_overflow(chip, eflg, &bec);
+	if (late)
+		return mcp2510_reg_modify(chip, MCP2510_REG_EFLG, late, 0);
 	return 0;
 }
 
@@ -212,8 +246,7 @@ static int irq_pass(struct mcp2510_chip *chip)
 	if (err)
 		return err;
 	clear = rx_clear_mask(chip, f.intf) | handle_tx(chip, &f) |
-		(f.intf & (MCP2510_INT_ERR | MCP2510_INT_MERR |
-			   MCP2510_INT_WAK));
+		(f.intf & (MCP2510_INT_MERR | MCP2510_INT_WAK));
 	if (clear) {
 		err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, clear, 0);
 		if (err)

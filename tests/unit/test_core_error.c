@@ -4,7 +4,8 @@
  * and passive for a node nobody acknowledges, bus-off under bus errors
  * and the way back (the chip's own recovery and mcp2510_restart()), bus
  * error reporting and whether a bus error hit the node's own frame, the
- * error counters, and one-shot failures.
+ * error counters, one-shot failures, and a state change in the middle of
+ * the interrupt pass that handles the one before.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -262,6 +263,60 @@ static void test_one_shot_failure_is_reported(void **state)
 	ch_rig_free(rig);
 }
 
+/* Let the lone sender's failed attempts go on until EFLG shows @flag. */
+static void run_unserviced_until(struct ch_node *node, u8 flag)
+{
+	struct sim_bus *bus = &node->rig->bus;
+
+	while (!(sim_chip_peek(&node->sim, MCP2510_REG_EFLG) & flag))
+		sim_bus_advance_to(bus, sim_bus_next_event(bus));
+}
+
+/*
+ * Right after the pass read CANINTF and EFLG (its second transfer, after
+ * a READ STATUS that showed nothing): TEC crosses 128.
+ */
+static void passive_within_the_pass(struct ch_node *node)
+{
+	if (node->xfer_count != 2)
+		return;
+	node->after_xfer = NULL;
+	run_unserviced_until(node, MCP2510_EFLG_TXEP);
+}
+
+/*
+ * The pass that handles the warning reads CANINTF and EFLG; before it
+ * clears ERRIF the chip turns error-passive and raises ERRIF again.  That
+ * change must not be cleared with the old one: a lone sender stays at
+ * TEC 128 and nothing else would ever interrupt again.
+ */
+static void test_state_change_during_the_pass(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x123, 4, 0);
+
+	(void)state;
+	assert_int_equal(ch_start(node, BITRATE, 0), 0);
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	run_unserviced_until(node, MCP2510_EFLG_TXWAR);
+	assert_false(sim_chip_peek(&node->sim, MCP2510_REG_EFLG) &
+		     MCP2510_EFLG_TXEP);
+
+	node->xfer_count = 0;
+	node->after_xfer = passive_within_the_pass;
+	ch_service(node, 4, NULL);
+	assert_null(node->after_xfer);	/* the hook ran */
+	assert_true(sim_chip_tec(&node->sim) >= 128);
+	/* the state is the one the chip holds after the clear */
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_PASSIVE);
+	assert_int_equal(node->ev.state_count, 1);
+	assert_int_equal(node->ev.state[0], CAN_STATE_ERROR_PASSIVE);
+	assert_int_equal(node->core.counters.passives, 1);
+	assert_false(ch_int_asserted(node));
+	ch_rig_free(rig);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -272,6 +327,7 @@ int main(void)
 		cmocka_unit_test(test_bus_error_direction),
 		cmocka_unit_test(test_error_counters),
 		cmocka_unit_test(test_one_shot_failure_is_reported),
+		cmocka_unit_test(test_state_change_during_the_pass),
 	};
 
 	return cmocka_run_group_tests_name("core_error", tests, NULL, NULL);
