@@ -9,11 +9,38 @@
  * MISO line reads values no programmed chip can hold, such as an OPMOD of
  * 5 to 7.  Both look the same from here: registers that disagree with
  * what was written, and neither leaves anything the chip says trustworthy.
+ *
+ * The check also holds the transmit bookkeeping against the chip.  A
+ * corrupted read, or a pass that could not see TXREQ, can leave a buffer
+ * counted busy whose frame is long gone: TXREQ and TXnIF both clear, so
+ * no interrupt will ever report it, and the ordered queue waits on it for
+ * good.  Such a frame was dropped as far as anyone can tell; giving it up
+ * lets the queue move again within a check period.
  */
 #include "mcp2510_core_priv.h"
 
 /* CNF3 bits every variant implements; SOF and WAKFIL may read back 0. */
 #define HEALTH_CNF3_MASK	MCP2510_CNF3_PHSEG2_MASK
+
+/* Busy buffers the chip neither sends nor has flagged as sent. */
+static int health_tx_check(struct mcp2510_chip *chip)
+{
+	u8 status, gone = 0;
+	unsigned int n;
+	int err;
+
+	if (!mcp2510_tx_pending(chip))
+		return 0;
+	err = mcp2510_read_status(chip, &status);
+	if (err)
+		return err;
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (!(status & (MCP2510_STATUS_TXREQ(n) |
+				MCP2510_STATUS_TXIF(n))))
+			gone |= BIT(n);
+	mcp2510_tx_lost(chip, gone);
+	return 0;
+}
 
 int mcp2510_health_check(struct mcp2510_chip *chip)
 {
@@ -36,7 +63,7 @@ int mcp2510_health_check(struct mcp2510_chip *chip)
 	    conf[1] != chip->cnf[1] || conf[2] != chip->cnf[0] ||
 	    conf[3] != chip->inte)
 		return -EBADMSG;
-	return 0;
+	return health_tx_check(chip);
 }
 
 int mcp2510_recover(struct mcp2510_chip *chip)

@@ -76,6 +76,28 @@ static int flags_read_full(struct mcp2510_chip *chip, struct irq_flags *f)
 	return 0;
 }
 
+/*
+ * MERRF after a full read without READ STATUS: a one-shot frame may have
+ * been dropped (TXREQ gone without TXnIF) and only TXREQ tells, so read
+ * it.  TXnIF comes from the same read, later than CANINTF's: a frame sent
+ * in between is seen sent, not taken for lost.
+ */
+static int flags_read_txreq(struct mcp2510_chip *chip, struct irq_flags *f)
+{
+	struct irq_flags s;
+	u8 status;
+	int err;
+
+	err = mcp2510_read_status(chip, &status);
+	if (err)
+		return err;
+	status_decode(status, &s);
+	f->intf |= s.intf & MCP2510_INT_TX_ALL & chip->inte;
+	f->txreq = s.txreq;
+	f->have_txreq = true;
+	return 0;
+}
+
 static int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 {
 	u8 status;
@@ -84,6 +106,9 @@ static int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 	memset(f, 0, sizeof(*f));
 	if (full_read_due(chip)) {
 		err = flags_read_full(chip, f);
+		if (!err && f->intf & chip->inte & MCP2510_INT_MERR &&
+		    mcp2510_tx_pending(chip))
+			err = flags_read_txreq(chip, f);
 	} else {
 		chip->irq.passes_to_full_read--;
 		err = mcp2510_read_status(chip, &status);
@@ -131,7 +156,7 @@ static u8 rx_clear_mask(const struct mcp2510_chip *chip, u8 intf)
 /* Returns the CANINTF bits to clear. */
 static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 {
-	u8 pending = chip->tx.busy & ~chip->tx.done;
+	u8 pending = mcp2510_tx_pending(chip);
 	u8 txif = 0, finished, clear = 0;
 	unsigned int n;
 

@@ -279,6 +279,9 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip);
  * Read back the mode, CNF1-3 and CANINTE (two transfers) and compare them
  * with what mcp2510_start() programmed: 0 when they agree (or the chip is
  * not started), -EBADMSG when the chip reset itself or reads garbage.
+ * When they agree and frames are pending, one READ STATUS more: a busy
+ * buffer with neither TXREQ nor TXnIF set is given up (tx_aborted), so
+ * a frame no interrupt will ever report cannot hold the queue.
  */
 int mcp2510_health_check(struct mcp2510_chip *chip);
 /*

@@ -22,6 +22,8 @@ void mcp2510_delay_us(struct mcp2510_chip *chip, unsigned int us);
 
 /* tx.c */
 void mcp2510_tx_reset(struct mcp2510_chip *chip);
+/* Slots whose frame the chip should still hold with TXREQ set. */
+u8 mcp2510_tx_pending(const struct mcp2510_chip *chip);
 /* Slots whose TXnIF was seen: raise tx_done in queue order. */
 void mcp2510_tx_complete(struct mcp2510_chip *chip, u8 slots);
 /* Slots the chip dropped without sending (TXREQ gone, no TXnIF). */

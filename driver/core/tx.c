@@ -59,8 +59,7 @@ static unsigned int queue_order(const struct mcp2510_chip *chip, u8 mask,
 	return n;
 }
 
-/* Frames the chip still holds with TXREQ set. */
-static u8 tx_pending(const struct mcp2510_chip *chip)
+u8 mcp2510_tx_pending(const struct mcp2510_chip *chip)
 {
 	return chip->tx.busy & ~chip->tx.done;
 }
@@ -86,7 +85,8 @@ static unsigned int pending_floor(const struct mcp2510_chip *chip)
 	unsigned int floor = KEY_CEILING, slot;
 
 	for (slot = 0; slot < MCP2510_TXB_COUNT; slot++)
-		if (tx_pending(chip) & BIT(slot) && tx_key(chip, slot) < floor)
+		if (mcp2510_tx_pending(chip) & BIT(slot) &&
+		    tx_key(chip, slot) < floor)
 			floor = tx_key(chip, slot);
 	return floor;
 }
@@ -138,7 +138,7 @@ static int tx_raise(struct mcp2510_chip *chip)
 	unsigned int n, i, ceiling = KEY_CEILING;
 	int err;
 
-	n = queue_order(chip, tx_pending(chip), order);
+	n = queue_order(chip, mcp2510_tx_pending(chip), order);
 	for (i = 0; i < n; i++) {
 		unsigned int slot = order[i];
 		u8 txp = txp_below(ceiling, slot);
@@ -258,7 +258,7 @@ void mcp2510_tx_lost(struct mcp2510_chip *chip, u8 slots)
 	u8 order[MCP2510_TXB_COUNT];
 	unsigned int n, i;
 
-	n = queue_order(chip, slots & tx_pending(chip), order);
+	n = queue_order(chip, slots & mcp2510_tx_pending(chip), order);
 	for (i = 0; i < n; i++) {
 		chip->tx.busy &= ~BIT(order[i]);
 		chip->counters.tx_errors++;

@@ -263,6 +263,33 @@ static void test_one_shot_failure_is_reported(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * One-shot once the chip is no longer error-active: every pass then reads
+ * CANINTF/EFLG instead of READ STATUS, and a dropped frame still has to
+ * be seen (TXREQ gone without TXnIF) when its MERRF is handled.
+ */
+static void test_one_shot_failure_while_warning(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2515);
+	struct ch_node *node = &rig->node[0];
+	unsigned int i;
+
+	(void)state;
+	assert_int_equal(ch_start(node, BITRATE, CAN_CTRLMODE_ONE_SHOT), 0);
+	/* TEC +8 per frame: warning after 12, passive after 16 */
+	for (i = 0; i < 20; i++) {
+		struct can_frame cf = ch_frame(0x321, 2, i);
+
+		assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+		ch_run(rig, 5 * MS);
+		assert_int_equal(node->ev.tx_aborted_count, i + 1);
+		assert_int_equal(mcp2510_tx_free(&node->core), 3);
+	}
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_PASSIVE);
+	assert_false(ch_int_asserted(node));
+	ch_rig_free(rig);
+}
+
 /* Let the lone sender's failed attempts go on until EFLG shows @flag. */
 static void run_unserviced_until(struct ch_node *node, u8 flag)
 {
@@ -327,6 +354,7 @@ int main(void)
 		cmocka_unit_test(test_bus_error_direction),
 		cmocka_unit_test(test_error_counters),
 		cmocka_unit_test(test_one_shot_failure_is_reported),
+		cmocka_unit_test(test_one_shot_failure_while_warning),
 		cmocka_unit_test(test_state_change_during_the_pass),
 	};
 

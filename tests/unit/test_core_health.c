@@ -4,7 +4,8 @@
  * that reset itself and a MISO line returning garbage both fail; recovery
  * gives up the frames in the TX buffers and programs the same bit timing,
  * filters and interrupt enables again; a chip that keeps reading garbage
- * is not declared recovered.
+ * is not declared recovered; a busy buffer the chip no longer holds is
+ * given up; and a stream with corrupted reads always drains.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -143,6 +144,139 @@ static void test_no_recovery_while_garbage_lasts(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * A frame the chip dropped behind the driver's back (ABAT, as a misjudged
+ * buffer can leave it): TXREQ and TXnIF are clear, nothing interrupts,
+ * and only the check sees that the buffer is no longer busy.
+ */
+static void test_check_gives_up_a_silent_buffer(void **state)
+{
+	static const u8 abat[4] = { MCP2510_INSTR_BIT_MODIFY,
+				    MCP2510_REG_CANCTRL, MCP2510_CANCTRL_ABAT,
+				    MCP2510_CANCTRL_ABAT };
+	struct ch_rig *rig = started_rig(0);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x123, 8, 1);
+	struct ch_spi_mark m;
+
+	(void)state;
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	ch_run(rig, MS);	/* no ACK: it stays in the chip */
+	ch_spi_mark(node, &m);
+	assert_int_equal(mcp2510_health_check(&node->core), 0);
+	/* a pending frame costs the check one READ STATUS */
+	assert_int_equal(ch_spi_since(node, &m).transfers, 3);
+	assert_int_equal(mcp2510_tx_free(&node->core), 2);
+
+	sim_chip_spi(&node->sim, abat, NULL, sizeof(abat));
+	ch_run(rig, 10 * MS);
+	assert_false(ch_int_asserted(node));
+	assert_int_equal(mcp2510_tx_free(&node->core), 2);
+	assert_int_equal(mcp2510_health_check(&node->core), 0);
+	assert_int_equal(node->ev.tx_aborted_count, 1);
+	assert_int_equal(node->core.counters.tx_errors, 1);
+	assert_int_equal(mcp2510_tx_free(&node->core), MCP2510_TXB_COUNT);
+	ch_rig_free(rig);
+}
+
+/* ---- transmit bookkeeping after corrupted reads ---------------------- */
+
+#define STREAM_FRAMES	24
+#define WATCH_MS	1000	/* the driver runs the check once a second */
+
+struct corrupt_plan {
+	u64 at;			/* corrupt after this many transfers */
+	enum sim_corrupt_kind kind;
+};
+
+static void corrupt_when_due(struct ch_node *node)
+{
+	const struct corrupt_plan *p = node->test_ctx;
+	struct sim_chip_faults *f = sim_chip_faults(&node->sim);
+
+	if (node->xfer_count != p->at)
+		return;
+	f->spi_corrupt_kind = p->kind;
+	f->spi_corrupt_byte = 0xff;
+	f->spi_corrupt = 2;	/* as the soak does */
+}
+
+/*
+ * A stream that keeps all three buffers busy, against a phantom that
+ * acknowledges it and floods the node at the same time, with two periods
+ * corrupted after @plan->at transfers, and the driver's check once a
+ * second.  Returns the millisecond by which every frame was sent or given
+ * up (0: never within three checks).
+ */
+static unsigned int corrupted_stream(enum mcp2510_model model,
+				     struct corrupt_plan *plan)
+{
+	struct ch_rig *rig = ch_rig_new(1, model);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame flood = ch_frame(0x050, 8, 0);
+	unsigned int submitted = 0, ms, settled = 0;
+
+	assert_int_equal(ch_start(node, BITRATE, 0), 0);
+	assert_int_equal(sim_phantom_flood(&rig->bus, &flood, 12, 0), 0);
+	node->test_ctx = plan;
+	node->after_xfer = corrupt_when_due;
+	for (ms = 1; ms <= 3 * WATCH_MS && !settled; ms++) {
+		while (submitted < STREAM_FRAMES &&
+		       mcp2510_tx_free(&node->core)) {
+			struct can_frame cf = ch_frame(0x100, 8, submitted);
+
+			assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+			submitted++;
+		}
+		ch_run(rig, MS);
+		if (ms % WATCH_MS == 0 &&
+		    mcp2510_health_check(&node->core) == -EBADMSG)
+			assert_int_equal(mcp2510_recover(&node->core), 0);
+		if (node->ev.tx_done_count + node->ev.tx_aborted_count ==
+		    STREAM_FRAMES)
+			settled = ms;
+	}
+	assert_int_equal(mcp2510_tx_free(&node->core), MCP2510_TXB_COUNT);
+	/* the chip never left error-active: no read may say otherwise */
+	assert_int_equal(node->ev.state_count, 0);
+	assert_int_equal(node->core.counters.recoveries, 0);
+	ch_rig_free(rig);
+	return settled;
+}
+
+/*
+ * The soak's fault: two corrupted SPI periods in the middle of a stream,
+ * at every point of it in turn.  A corrupted read may misjudge a frame,
+ * but the queue must drain and the error state must not change.
+ */
+static void test_corrupted_reads_never_stall_tx(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	static const enum sim_corrupt_kind kinds[] = {
+		SIM_CORRUPT_FLIP, SIM_CORRUPT_RANDOM, SIM_CORRUPT_FIXED,
+	};
+	struct corrupt_plan plan;
+	unsigned int i, k, ms;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		for (k = 0; k < ARRAY_SIZE(kinds); k++) {
+			plan.kind = kinds[k];
+			for (plan.at = 1; plan.at <= 150; plan.at++) {
+				ms = corrupted_stream(models[i], &plan);
+				if (!ms || ms > WATCH_MS)
+					fail_msg("%s, kind %u after %llu: %u ms",
+						 models[i] ? "MCP2515" :
+							     "MCP2510",
+						 k, (unsigned long long)plan.at,
+						 ms);
+			}
+		}
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -150,6 +284,8 @@ int main(void)
 		cmocka_unit_test(test_reset_is_detected_and_undone),
 		cmocka_unit_test(test_garbage_is_detected),
 		cmocka_unit_test(test_no_recovery_while_garbage_lasts),
+		cmocka_unit_test(test_check_gives_up_a_silent_buffer),
+		cmocka_unit_test(test_corrupted_reads_never_stall_tx),
 	};
 
 	return cmocka_run_group_tests(tests, NULL, NULL);
