@@ -77,8 +77,8 @@ static int flags_read_full(struct mcp2510_chip *chip, struct irq_flags *f)
 }
 
 /*
- * MERRF after a full read without READ STATUS: a one-shot frame may have
- * been dropped (TXREQ gone without TXnIF) and only TXREQ tells, so read
+ * MERRF in one-shot mode after a full read without READ STATUS: a frame
+ * may have been dropped (TXREQ gone without TXnIF) and only TXREQ tells, so read
  * it.  TXnIF comes from the same read, later than CANINTF's: a frame sent
  * in between is seen sent, not taken for lost.
  */
@@ -106,7 +106,8 @@ static int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 	memset(f, 0, sizeof(*f));
 	if (full_read_due(chip)) {
 		err = flags_read_full(chip, f);
-		if (!err && f->intf & chip->inte & MCP2510_INT_MERR &&
+		if (!err && chip->ctrlmode & CAN_CTRLMODE_ONE_SHOT &&
+		    f->intf & chip->inte & MCP2510_INT_MERR &&
 		    mcp2510_tx_pending(chip))
 			err = flags_read_txreq(chip, f);
 	} else {
@@ -165,11 +166,16 @@ static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 			txif |= BIT(n);
 	/*
 	 * With TXREQ known, a pending buffer whose TXREQ went away without
-	 * TXnIF was dropped by the chip (one-shot failure, abort).
+	 * TXnIF was dropped by the chip.  Only a one-shot chip drops frames
+	 * by itself.  Otherwise the chip reset (or the read was wrong): the
+	 * buffer stays busy, so that no new frame goes into a chip that
+	 * cannot send it, until the health check tells which and gives up
+	 * the frame, alone or with the others of a reset chip.
 	 */
 	finished = f->have_txreq ? pending & ~f->txreq : pending & txif;
 	mcp2510_tx_complete(chip, finished & txif);
-	mcp2510_tx_lost(chip, finished & ~txif);
+	if (chip->ctrlmode & CAN_CTRLMODE_ONE_SHOT)
+		mcp2510_tx_lost(chip, finished & ~txif);
 	/*
 	 * A TXnIF of a buffer still counted as pending (set after READ
 	 * STATUS saw TXREQ) stays set, to be handled by the next pass.

@@ -5,7 +5,8 @@
  * gives up the frames in the TX buffers and programs the same bit timing,
  * filters and interrupt enables again; a chip that keeps reading garbage
  * is not declared recovered; a busy buffer the chip no longer holds is
- * given up; and a stream with corrupted reads always drains.
+ * given up; a reset gives up only the frames in the chip; and a stream
+ * with corrupted reads always drains.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -179,6 +180,42 @@ static void test_check_gives_up_a_silent_buffer(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * A chip that resets with three frames in its buffers: a pass that runs
+ * before the check (an edge-triggered line's poll, an interrupt already
+ * pending) finds TXREQ gone without TXnIF.  The buffers must stay busy:
+ * freed, they would take frames still queued in the stack into a chip
+ * that cannot send them, and the recovery would give those up too.
+ */
+static void test_reset_gives_up_only_the_chips_frames(void **state)
+{
+	struct ch_rig *rig = started_rig(0);
+	struct ch_node *node = &rig->node[0];
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < MCP2510_TXB_COUNT; i++) {
+		struct can_frame cf = ch_frame(0x123, 8, i);
+
+		assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	}
+	ch_run(rig, MS);	/* no ACK: all three stay in the chip */
+	sim_chip_reset_pin(&node->sim);
+	sim_bus_advance(&rig->bus, sim_chip_startup_ns(&node->sim));
+	assert_false(sim_chip_peek(&node->sim, MCP2510_REG_TXBCTRL(0)) &
+		     MCP2510_TXBCTRL_TXREQ);
+
+	assert_true(mcp2510_irq_handle(&node->core) >= 0);
+	assert_int_equal(node->ev.tx_aborted_count, 0);
+	assert_int_equal(mcp2510_tx_free(&node->core), 0);
+
+	assert_int_equal(mcp2510_health_check(&node->core), -EBADMSG);
+	assert_int_equal(mcp2510_recover(&node->core), 0);
+	assert_int_equal(node->ev.tx_aborted_count, MCP2510_TXB_COUNT);
+	assert_int_equal(mcp2510_tx_free(&node->core), MCP2510_TXB_COUNT);
+	ch_rig_free(rig);
+}
+
 /* ---- transmit bookkeeping after corrupted reads ---------------------- */
 
 #define STREAM_FRAMES	24
@@ -285,6 +322,7 @@ int main(void)
 		cmocka_unit_test(test_garbage_is_detected),
 		cmocka_unit_test(test_no_recovery_while_garbage_lasts),
 		cmocka_unit_test(test_check_gives_up_a_silent_buffer),
+		cmocka_unit_test(test_reset_gives_up_only_the_chips_frames),
 		cmocka_unit_test(test_corrupted_reads_never_stall_tx),
 	};
 
