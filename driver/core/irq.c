@@ -15,14 +15,23 @@
  * Flags are cleared with one BIT MODIFY naming only the flags handled, so
  * a flag raised meanwhile survives and asserts INT again.  ERRIF is the
  * exception: it is cleared on its own before EFLG is read again for the
- * state (see handle_errors()).  A buffer whose
- * RXnIF is set is never overwritten by the chip, so reading it before the
- * clear cannot lose a frame.
+ * state (see handle_errors()).  A buffer whose RXnIF is set is never
+ * overwritten by the chip, so reading it before the clear cannot lose a
+ * frame.
  *
  * RXB0 is read before RXB1: with rollover a frame only goes to RXB1 while
- * RXB0 is full, so when both are seen full RXB0's frame is the older one.
- * (RXB1 may hold the older frame if RXB0 was emptied between the two
- * arrivals, inside a pass; no register tells, so that race is accepted.)
+ * RXB0 is full, so when both are seen full RXB0's frame is usually the
+ * older one.  Not always: a pass that saw only RXB0 full keeps it full
+ * until its clear, so frame B arriving meanwhile rolls over to RXB1, and
+ * frame C arriving after the clear takes RXB0.  The next pass finds both
+ * full with the newer frame in RXB0.  It cannot tell that from RXB0 having
+ * stayed full all along: no register records the order of arrival
+ * (FILHIT and RX STATUS name the filter and the buffer, not the time),
+ * and an overflow flag only says a frame was lost.  Another READ STATUS
+ * after every clear would narrow the window, not close it (B and C may
+ * both arrive before it), at one more transfer per received frame.  So
+ * under a flood two adjacent frames may reach the stack swapped; the
+ * soak counts them.
  */
 #include "mcp2510_core_priv.h"
 
