@@ -75,8 +75,13 @@ struct mcp2510_sim {
 	unsigned int nchips;
 	struct mcp2510_sim_monitor monitor;
 
-	/* bus time: model ns = (ktime_get_ns() - epoch_ns) / time_scale */
-	u64 epoch_ns;
+	/*
+	 * bus time: model ns = base_model_ns +
+	 *	(ktime_get_ns() - base_real_ns) / time_scale,
+	 * rebased whenever time_scale changes so bus time never jumps
+	 */
+	u64 base_real_ns;
+	u64 base_model_ns;
 	u32 time_scale;
 	struct hrtimer timer;
 	bool stopping;
@@ -106,7 +111,9 @@ struct mcp2510_sim {
 };
 
 /* kmod_clock.c */
+#define MCP2510_SIM_MAX_TIME_SCALE	1000000
 void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale);
+void mcp2510_sim_clock_rescale(struct mcp2510_sim *sim, u32 time_scale);
 void mcp2510_sim_clock_stop(struct mcp2510_sim *sim);
 void mcp2510_sim_lock(struct mcp2510_sim *sim) __acquires(&sim->lock);
 void mcp2510_sim_unlock(struct mcp2510_sim *sim) __releases(&sim->lock);

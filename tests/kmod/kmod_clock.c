@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * Bus time follows the kernel's monotonic clock, slowed down by time_scale.
+ * A scenario may change time_scale at run time (debugfs "time_scale"), to
+ * give every bit rate the same frame time; bus time then goes on from
+ * where it stood.
  *
  * The model only moves when it is told to, so every access first brings it
  * up to the present and afterwards arms a timer for its next event: frames
@@ -16,7 +19,8 @@
 
 static u64 model_now(const struct mcp2510_sim *sim)
 {
-	return div_u64(ktime_get_ns() - sim->epoch_ns, sim->time_scale);
+	return sim->base_model_ns +
+	       div_u64(ktime_get_ns() - sim->base_real_ns, sim->time_scale);
 }
 
 void mcp2510_sim_lock(struct mcp2510_sim *sim) __acquires(&sim->lock)
@@ -38,8 +42,10 @@ static void arm_for_next_event(struct mcp2510_sim *sim)
 
 	if (sim->stopping || next == U64_MAX)
 		return;
+	next = max(next, sim->base_model_ns) - sim->base_model_ns;
 	if (check_mul_overflow(next, (u64)sim->time_scale, &real) ||
-	    check_add_overflow(real, sim->epoch_ns, &real) || real > KTIME_MAX)
+	    check_add_overflow(real, sim->base_real_ns, &real) ||
+	    real > KTIME_MAX)
 		return;
 	hrtimer_start(&sim->timer, ns_to_ktime(real), HRTIMER_MODE_ABS_SOFT);
 }
@@ -62,9 +68,20 @@ static enum hrtimer_restart bus_timer_fired(struct hrtimer *timer)
 void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale)
 {
 	sim->time_scale = time_scale;
-	sim->epoch_ns = ktime_get_ns();
+	sim->base_real_ns = ktime_get_ns();
+	sim->base_model_ns = 0;
 	hrtimer_init(&sim->timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_SOFT);
 	sim->timer.function = bus_timer_fired;
+}
+
+/* Called under the lock; the unlock re-arms the timer at the new pace. */
+void mcp2510_sim_clock_rescale(struct mcp2510_sim *sim, u32 time_scale)
+{
+	u64 real = ktime_get_ns();
+
+	sim->base_model_ns += div_u64(real - sim->base_real_ns, sim->time_scale);
+	sim->base_real_ns = real;
+	sim->time_scale = time_scale;
 }
 
 void mcp2510_sim_clock_stop(struct mcp2510_sim *sim)

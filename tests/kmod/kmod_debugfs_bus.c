@@ -221,6 +221,31 @@ static int time_ns_get(void *data, u64 *val)
 
 DEFINE_DEBUGFS_ATTRIBUTE(time_ns_fops, time_ns_get, NULL, "%llu\n");
 
+static int time_scale_get(void *data, u64 *val)
+{
+	struct mcp2510_sim *sim = data;
+
+	mcp2510_sim_lock(sim);
+	*val = sim->time_scale;
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+static int time_scale_set(void *data, u64 val)
+{
+	struct mcp2510_sim *sim = data;
+
+	if (val < 1 || val > MCP2510_SIM_MAX_TIME_SCALE)
+		return -EINVAL;
+	mcp2510_sim_lock(sim);
+	mcp2510_sim_clock_rescale(sim, val);
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(time_scale_fops, time_scale_get, time_scale_set,
+			 "%llu\n");
+
 void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 {
 	struct dentry *dir = debugfs_create_dir(MCP2510_SIM_NAME, NULL);
@@ -234,6 +259,8 @@ void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 	debugfs_create_file_unsafe("bus_errors", 0600, dir, sim, &bus_errors_fops);
 	debugfs_create_file_unsafe("no_ack", 0600, dir, sim, &no_ack_fops);
 	debugfs_create_file_unsafe("time_ns", 0400, dir, sim, &time_ns_fops);
+	debugfs_create_file_unsafe("time_scale", 0600, dir, sim,
+				   &time_scale_fops);
 	for (n = 0; n < sim->nchips; n++)
 		mcp2510_sim_debugfs_chip_create(&sim->chips[n], dir);
 }

@@ -48,8 +48,6 @@ static bool gpio_controller;
 module_param(gpio_controller, bool, 0444);
 MODULE_PARM_DESC(gpio_controller, "give the SPI devices gpio-controller (default no)");
 
-#define MAX_TIME_SCALE	1000000
-
 struct chip_variant {
 	const char *name;
 	enum sim_variant model;
@@ -94,9 +92,9 @@ static int check_params(void)
 		pr_err("driver=%s: need mcp2510 or mcp251x\n", driver);
 		return -EINVAL;
 	}
-	if (time_scale < 1 || time_scale > MAX_TIME_SCALE) {
+	if (time_scale < 1 || time_scale > MCP2510_SIM_MAX_TIME_SCALE) {
 		pr_err("time_scale=%u: need 1..%d\n", time_scale,
-		       MAX_TIME_SCALE);
+		       MCP2510_SIM_MAX_TIME_SCALE);
 		return -EINVAL;
 	}
 	if (mcp2510_sim_trigger_parse(int_trigger, &trigger)) {
