@@ -1,6 +1,6 @@
 # Helpers for scenario scripts, in the guest at /lib/rig.sh:  . /lib/rig.sh
-# (POSIX sh, busybox ash).  Environment from vm-run: VM_KERNEL (6.1, 6.12 or
-# debug), VM_NODES, VM_VARIANT, VM_DRIVER, VM_SIM (1 when the simulated
+# (POSIX sh, busybox ash).  Environment from vm-run: VM_KERNEL (6.1, 6.12,
+# debug or rt), VM_NODES, VM_VARIANT, VM_DRIVER, VM_SIM (1 when the simulated
 # chips are loaded).
 
 # Print a failure message and exit non-zero.
