@@ -21,6 +21,29 @@ enum can_state mcp2510_error_eflg_state(u8 eflg)
 	return CAN_STATE_ERROR_ACTIVE;
 }
 
+/*
+ * The limits EFLG follows (DS21801 section 6): warning at 96, passive at
+ * 128, per counter.  TXBO comes on top of TXEP (bus-off is reached through
+ * error-passive, and TEC stays up until the recovery clears it).  Every
+ * flag must match, so a corrupted read rarely passes for a real one.
+ */
+bool mcp2510_error_state_plausible(u8 eflg, const struct can_berr_counter *bec)
+{
+	u8 want = 0;
+
+	if (bec->txerr >= 96)
+		want |= MCP2510_EFLG_TXWAR | MCP2510_EFLG_EWARN;
+	if (bec->rxerr >= 96)
+		want |= MCP2510_EFLG_RXWAR | MCP2510_EFLG_EWARN;
+	if (bec->txerr >= 128)
+		want |= MCP2510_EFLG_TXEP;
+	if (bec->rxerr >= 128)
+		want |= MCP2510_EFLG_RXEP;
+	if (eflg & MCP2510_EFLG_TXBO && bec->txerr >= 128)
+		want |= MCP2510_EFLG_TXBO;
+	return (eflg & (EFLG_PASSIVE | EFLG_WARNING | MCP2510_EFLG_TXBO)) == want;
+}
+
 static void error_frame_init(struct can_frame *cf, canid_t class,
 			     const struct can_berr_counter *bec)
 {

@@ -201,9 +201,8 @@ static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
  * Clear ERRIF, then read the EFLG the state is taken from.  A change after
  * the pass read the flags (TEC crossing 128 while it runs) raises ERRIF
  * again: read in the other order, the clear would take that ERRIF with it
- * and the change would go unseen.  The second read also keeps a single
- * corrupted read from reporting a state the chip never entered.  RXnOVR
- * goes first: ERRIF must not be cleared while RXnOVR still stands.
+ * and the change would go unseen.  RXnOVR goes first: ERRIF must not be
+ * cleared while RXnOVR still stands.
  */
 static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg)
 {
@@ -220,6 +219,35 @@ static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg)
 	return mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
 }
 
+/* Reads of EFLG and TEC/REC until they agree, at most. */
+#define STATE_READ_TRIES	3
+
+/*
+ * EFLG and the counters for a state change.  The state decides whether
+ * the interface goes bus-off, so a read that may be corrupted is not
+ * enough: EFLG must agree with TEC/REC, read just after it.  When they
+ * disagree (a corrupted read, or a counter crossing a limit in between)
+ * both are read again; a short burst of corrupted transfers spoils at
+ * most two pairs.  If none agrees the last EFLG stands.
+ */
+static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
+		      struct can_berr_counter *bec)
+{
+	unsigned int tries = 0;
+	int err;
+
+	err = errif_clear_reread(chip, ovr, eflg);
+	for (;;) {
+		if (err)
+			return err;
+		err = mcp2510_berr_counter(chip, bec);
+		if (err || mcp2510_error_state_plausible(*eflg, bec) ||
+		    ++tries == STATE_READ_TRIES)
+			return err;
+		err = mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
+	}
+}
+
 /*
  * ERRIF reports a worse error state or an overflow; a better state (after
  * bus-off recovery, or as the counters fall) raises no flag, so while the
@@ -233,26 +261,25 @@ static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
 			  mcp2510_error_eflg_state(f->eflg) != chip->state);
 	u8 ovr = f->intf & MCP2510_INT_ERR ? f->eflg & EFLG_RXOVR_ALL : 0;
 	struct can_berr_counter bec;
-	u8 eflg, late;
+	u8 eflg, late = 0;
 	int err;
 
 	if (!state_due && !(f->intf & MCP2510_INT_MERR))
 		return 0;
-	err = mcp2510_berr_counter(chip, &bec);
+	if (state_due)
+		err = state_read(chip, ovr, &eflg, &bec);
+	else
+		err = mcp2510_berr_counter(chip, &bec);
 	if (err)
 		return err;
-	/* reported before the clear: a failed clear reports it again */
-	mcp2510_error_overflow(chip, ovr, &bec);
+	if (state_due) {
+		mcp2510_error_state_update(chip, eflg, &bec);
+		/* an overflow since the first read: its ERRIF may be gone */
+		late = eflg & EFLG_RXOVR_ALL;
+	}
+	mcp2510_error_overflow(chip, ovr | late, &bec);
 	if (f->intf & MCP2510_INT_MERR)
 		mcp2510_error_bus(chip, &bec);
-	if (!state_due)
-		return 0;
-	err = errif_clear_reread(chip, ovr, &eflg);
-	if (err)
-		return err;
-	mcp2510_error_state_update(chip, eflg, &bec);
-	/* an overflow since the first read: its ERRIF may be gone */
-	late = mcp2510_error_overflow(chip, eflg, &bec);
 	if (late)
 		return mcp2510_reg_modify(chip, MCP2510_REG_EFLG, late, 0);
 	return 0;

@@ -33,6 +33,8 @@ void mcp2510_tx_abort_all(struct mcp2510_chip *chip);
 
 /* error.c */
 enum can_state mcp2510_error_eflg_state(u8 eflg);
+/* Whether TEC/REC are within the limits of the state EFLG shows. */
+bool mcp2510_error_state_plausible(u8 eflg, const struct can_berr_counter *bec);
 /* Follow EFLG/TEC/REC into chip->state, raising state and error events. */
 void mcp2510_error_state_update(struct mcp2510_chip *chip, u8 eflg,
 				const struct can_berr_counter *bec);

@@ -7,10 +7,32 @@
 
 #include "core_harness.h"
 
+static void ch_corrupt_start(struct ch_node *node)
+{
+	struct sim_chip_faults *f = sim_chip_faults(&node->sim);
+
+	if (!node->corrupt_periods || node->xfer_count != node->corrupt_after)
+		return;
+	f->spi_corrupt_kind = node->corrupt_kind;
+	f->spi_corrupt_byte = 0x00;
+	f->spi_corrupt = node->corrupt_periods;
+	node->corrupt_periods = 0;
+}
+
+void ch_corrupt_after(struct ch_node *node, u64 after,
+		      enum sim_corrupt_kind kind, u32 periods)
+{
+	node->corrupt_after = node->xfer_count + after;
+	node->corrupt_kind = kind;
+	node->corrupt_periods = periods;
+	ch_corrupt_start(node);
+}
+
 static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 {
 	struct ch_node *node = ctx;
 
+	ch_corrupt_start(node);
 	node->xfer_count++;
 	if (node->miso_stuck >= 0) {
 		if (rx)

@@ -49,6 +49,10 @@ struct ch_node {
 	void (*after_xfer)(struct ch_node *node);
 	/* a broken board: MISO always reads this (-1: a working line) */
 	int miso_stuck;
+	/* a glitch: corrupt_periods periods once xfer_count is corrupt_after */
+	u64 corrupt_after;
+	u32 corrupt_periods;
+	enum sim_corrupt_kind corrupt_kind;
 	void *test_ctx;
 };
 
@@ -84,6 +88,13 @@ bool ch_step(struct ch_rig *rig);
 void ch_run(struct ch_rig *rig, u64 ns);
 /* Run until the bus is idle with nothing pending and no INT asserted. */
 void ch_run_idle(struct ch_rig *rig, u64 max_ns);
+
+/*
+ * Corrupt MISO (@kind; SIM_CORRUPT_FIXED reads 0x00) for @periods transfers
+ * once @after more transfers have gone, counting from now.
+ */
+void ch_corrupt_after(struct ch_node *node, u64 after,
+		      enum sim_corrupt_kind kind, u32 periods);
 
 void ch_spi_mark(const struct ch_node *node, struct ch_spi_mark *m);
 /* Traffic since @m */

@@ -344,6 +344,45 @@ static void test_state_change_during_the_pass(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * Two corrupted periods (the soak's fault) at each point of a pass that
+ * handles an overflow's ERRIF: whichever reads they hit, the chip is
+ * error-active and no state change may be reported.  (A MISO line stuck
+ * high reads as a chip with every EFLG flag and counter up; that is for
+ * the health check to find.)
+ */
+static void test_corrupted_reads_keep_the_state(void **state)
+{
+	static const enum sim_corrupt_kind kinds[] = {
+		SIM_CORRUPT_FLIP, SIM_CORRUPT_RANDOM, SIM_CORRUPT_FIXED,
+	};
+	unsigned int k, i, at;
+
+	(void)state;
+	for (k = 0; k < ARRAY_SIZE(kinds); k++) {
+		for (at = 0; at < 14; at++) {
+			struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+			struct ch_node *node = &rig->node[0];
+
+			assert_int_equal(ch_start(node, BITRATE, 0), 0);
+			for (i = 0; i < 3; i++) {
+				struct can_frame cf = ch_frame(0x200 + i, 8, i);
+
+				assert_int_equal(sim_phantom_send(&rig->bus, &cf, 0),
+						 0);
+			}
+			sim_bus_advance(&rig->bus, 2 * MS);
+			assert_true(sim_chip_peek(&node->sim, MCP2510_REG_EFLG) &
+				    MCP2510_EFLG_RX1OVR);
+			ch_corrupt_after(node, at, kinds[k], 2);
+			ch_run(rig, 5 * MS);
+			assert_int_equal(node->ev.state_count, 0);
+			assert_int_equal(node->core.state, CAN_STATE_ERROR_ACTIVE);
+			ch_rig_free(rig);
+		}
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -356,6 +395,7 @@ int main(void)
 		cmocka_unit_test(test_one_shot_failure_is_reported),
 		cmocka_unit_test(test_one_shot_failure_while_warning),
 		cmocka_unit_test(test_state_change_during_the_pass),
+		cmocka_unit_test(test_corrupted_reads_keep_the_state),
 	};
 
 	return cmocka_run_group_tests_name("core_error", tests, NULL, NULL);

@@ -221,32 +221,15 @@ static void test_reset_gives_up_only_the_chips_frames(void **state)
 #define STREAM_FRAMES	24
 #define WATCH_MS	1000	/* the driver runs the check once a second */
 
-struct corrupt_plan {
-	u64 at;			/* corrupt after this many transfers */
-	enum sim_corrupt_kind kind;
-};
-
-static void corrupt_when_due(struct ch_node *node)
-{
-	const struct corrupt_plan *p = node->test_ctx;
-	struct sim_chip_faults *f = sim_chip_faults(&node->sim);
-
-	if (node->xfer_count != p->at)
-		return;
-	f->spi_corrupt_kind = p->kind;
-	f->spi_corrupt_byte = 0xff;
-	f->spi_corrupt = 2;	/* as the soak does */
-}
-
 /*
  * A stream that keeps all three buffers busy, against a phantom that
  * acknowledges it and floods the node at the same time, with two periods
- * corrupted after @plan->at transfers, and the driver's check once a
+ * corrupted (@kind) after @at transfers, and the driver's check once a
  * second.  Returns the millisecond by which every frame was sent or given
  * up (0: never within three checks).
  */
 static unsigned int corrupted_stream(enum mcp2510_model model,
-				     struct corrupt_plan *plan)
+				     enum sim_corrupt_kind kind, u64 at)
 {
 	struct ch_rig *rig = ch_rig_new(1, model);
 	struct ch_node *node = &rig->node[0];
@@ -255,8 +238,7 @@ static unsigned int corrupted_stream(enum mcp2510_model model,
 
 	assert_int_equal(ch_start(node, BITRATE, 0), 0);
 	assert_int_equal(sim_phantom_flood(&rig->bus, &flood, 12, 0), 0);
-	node->test_ctx = plan;
-	node->after_xfer = corrupt_when_due;
+	ch_corrupt_after(node, at, kind, 2);	/* as the soak does */
 	for (ms = 1; ms <= 3 * WATCH_MS && !settled; ms++) {
 		while (submitted < STREAM_FRAMES &&
 		       mcp2510_tx_free(&node->core)) {
@@ -294,20 +276,19 @@ static void test_corrupted_reads_never_stall_tx(void **state)
 	static const enum sim_corrupt_kind kinds[] = {
 		SIM_CORRUPT_FLIP, SIM_CORRUPT_RANDOM, SIM_CORRUPT_FIXED,
 	};
-	struct corrupt_plan plan;
 	unsigned int i, k, ms;
+	u64 at;
 
 	(void)state;
 	for (i = 0; i < ARRAY_SIZE(models); i++) {
 		for (k = 0; k < ARRAY_SIZE(kinds); k++) {
-			plan.kind = kinds[k];
-			for (plan.at = 1; plan.at <= 150; plan.at++) {
-				ms = corrupted_stream(models[i], &plan);
+			for (at = 0; at < 150; at++) {
+				ms = corrupted_stream(models[i], kinds[k], at);
 				if (!ms || ms > WATCH_MS)
 					fail_msg("%s, kind %u after %llu: %u ms",
 						 models[i] ? "MCP2515" :
 							     "MCP2510",
-						 k, (unsigned long long)plan.at,
+						 k, (unsigned long long)at,
 						 ms);
 			}
 		}
