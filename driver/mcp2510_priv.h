@@ -115,6 +115,7 @@ extern const struct mcp2510_events mcp2510_netdev_events;
 /* rx.c */
 void mcp2510_rx_init(struct mcp2510_priv *priv);
 void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb);
+void mcp2510_rx_queue_echo(struct mcp2510_priv *priv, struct sk_buff *skb);
 void mcp2510_rx_kick(struct mcp2510_priv *priv);
 int mcp2510_rx_poll(struct napi_struct *napi, int budget);
 void mcp2510_rx_disable(struct mcp2510_priv *priv);

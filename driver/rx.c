@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * Receive path: the IRQ thread queues frames and error frames here and a
- * NAPI poll hands them to the stack, so they arrive in exactly the order
- * the chip produced them whichever CPU the thread ran on.  (netif_rx()
- * would use the backlog of the current CPU and could reorder frames read
- * on different CPUs.)  can_rx_offload would do the same, but can-dev only
- * contains it when an in-tree driver selects CONFIG_CAN_RX_OFFLOAD, which
- * an out-of-tree module cannot: many small kernels lack it.
+ * Receive path: the IRQ thread queues frames, error frames and the echoes
+ * of sent frames here and a NAPI poll hands them to the stack, so they
+ * arrive in exactly the order the chip produced them whichever CPU the
+ * thread ran on.  (netif_rx() would use the backlog of the current CPU and
+ * could reorder frames read on different CPUs.)  can_rx_offload would do
+ * the same, but can-dev only contains it when an in-tree driver selects
+ * CONFIG_CAN_RX_OFFLOAD, which an out-of-tree module cannot: many small
+ * kernels lack it.
  */
 #include <linux/can/dev.h>
+#include <linux/if_packet.h>
 #include <linux/netdevice.h>
 #include <linux/skbuff.h>
 
@@ -33,6 +35,16 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
 		stats->rx_fifo_errors++;
 		return;
 	}
+	skb_queue_tail(&priv->rx_queue, skb);
+}
+
+/*
+ * The echo of a sent frame, in completion order.  It is marked as looped
+ * back while queued so that mcp2510_rx_poll() does not count it received.
+ */
+void mcp2510_rx_queue_echo(struct mcp2510_priv *priv, struct sk_buff *skb)
+{
+	skb->pkt_type = PACKET_LOOPBACK;
 	skb_queue_tail(&priv->rx_queue, skb);
 }
 
@@ -68,7 +80,10 @@ int mcp2510_rx_poll(struct napi_struct *napi, int budget)
 	int done = 0;
 
 	while (done < budget && (skb = skb_dequeue(&priv->rx_queue))) {
-		mcp2510_rx_count(priv->ndev, skb);
+		if (skb->pkt_type == PACKET_LOOPBACK)
+			skb->pkt_type = PACKET_BROADCAST;
+		else
+			mcp2510_rx_count(priv->ndev, skb);
 		netif_receive_skb(skb);
 		done++;
 	}
