@@ -178,6 +178,7 @@ check_sender() {
 
 flood_round() {
 	corrupt0=0 corrupt1=0
+	restarts0=$(restarts can0) restarts1=$(restarts can1)
 	snap a
 	tally_start can0 /tmp/tally0
 	tally_start can1 /tmp/tally1
@@ -194,6 +195,12 @@ flood_round() {
 	wait # the tallies, 4 s after the last frame
 	snap b
 	echo 0 >"$SIM/bus_errors"
+	# No fault of a round takes TEC to 256: a restart means the driver
+	# reported a bus-off the chip never had (a corrupted EFLG believed).
+	for i in 0 1; do
+		[ "$(restarts can$i)" -eq "$(eval echo "\$restarts$i")" ] ||
+			fail "round $round: can$i went bus-off and restarted"
+	done
 	check_sender 0
 	check_sender 1
 	check_receiver 1 0
