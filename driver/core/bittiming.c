@@ -18,7 +18,8 @@
 
 /*
  * In CAN-clock quanta (oscillator / 2): TSEG1 = PRSEG + PS1 (2..16, but
- * PRSEG + PS1 >= PS2 >= 2 and PS1 >= 1 make 3 the useful minimum).
+ * PRSEG + PS1 >= PS2 >= 2 and PS1 >= 1 make 3 the useful minimum, which
+ * the encoder holds timing given by hand to as well).
  */
 const struct can_bittiming_const mcp2510_bittiming_const = {
 	.name = "mcp2510",
@@ -45,8 +46,13 @@ static int bittiming_check(const struct can_bittiming *bt)
 	    !within(bt->sjw, 1, SJW_MAX) ||
 	    !within(bt->brp, 1, BRP_MAX))
 		return -EINVAL;
-	/* sample point at or after the middle of the bit */
-	if (bt->prop_seg + bt->phase_seg1 < bt->phase_seg2)
+	/*
+	 * Sample point at or after the middle of the bit, and no shorter a
+	 * TSEG1 than the constants tell the stack (which checks only timing
+	 * given by hand against them).
+	 */
+	if (bt->prop_seg + bt->phase_seg1 < bt->phase_seg2 ||
+	    bt->prop_seg + bt->phase_seg1 < mcp2510_bittiming_const.tseg1_min)
 		return -EINVAL;
 	/* a resynchronisation must not move the bit end before the sample */
 	if (bt->phase_seg2 <= bt->sjw)

@@ -78,10 +78,11 @@ static void test_encode_fields_and_flags(void **state)
 						  cnf), 0);
 	assert_int_equal(cnf[1], 0xff);		/* ... and SAM */
 
-	bt = timing(1, 1, 2, 1, 1);
+	/* the shortest bit the constants allow: TSEG1 3, PS2 2 */
+	bt = timing(1, 2, 2, 1, 1);
 	assert_int_equal(mcp2510_bittiming_encode(&bt, 0, cnf), 0);
 	assert_int_equal(cnf[0], 0x00);
-	assert_int_equal(cnf[1], 0x80);
+	assert_int_equal(cnf[1], 0x88);
 	assert_int_equal(cnf[2], 0x01);
 }
 
@@ -102,6 +103,7 @@ static void test_encode_refuses_broken_timing(void **state)
 		{ "BRP 0", 4, 4, 3, 1, 0 },
 		{ "BRP 65", 4, 4, 3, 1, 65 },
 		{ "PRSEG + PS1 < PS2", 1, 2, 4, 1, 1 },
+		{ "PRSEG + PS1 below tseg1_min", 1, 1, 2, 1, 1 },
 		{ "PS2 == SJW", 4, 4, 2, 2, 1 },
 		{ "PS2 < SJW", 4, 4, 3, 4, 1 },
 	};
