@@ -94,6 +94,16 @@ sim_state() {
 	awk -v k="$2" '$1 == k { print $2 }' "$SIM/chip$1/state"
 }
 
+# ethtool_stat IF NAME: one of the driver's `ethtool -S` counters.
+ethtool_stat() {
+	ethtool -S "$1" | awk -v k="$2:" '$1 == k { print $2 }'
+}
+
+# expect_eq WHAT GOT WANTED: fail unless the number GOT is WANTED.
+expect_eq() {
+	[ "$2" -eq "$3" ] || fail "$1 is $2, expected $3"
+}
+
 # Whole seconds since boot.
 uptime_s() {
 	cut -d. -f1 /proc/uptime

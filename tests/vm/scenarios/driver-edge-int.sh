@@ -9,32 +9,18 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
-state() { # CHIP NAME
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/state
-}
-counter() { # CHIP NAME
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
-}
-stat() { # IF NAME: one of ethtool -S
-	ethtool -S "$1" | awk -v k="$2:" '$1 == k { print $2 }'
-}
-expect() { # WHAT GOT WANTED
-	[ "$2" -eq "$3" ] || fail "$1 is $2, expected $3"
-}
-
 can_up can0 500000
 can_up can1 500000
 # request_irq() programs the trigger the driver asks for: had it asked for
 # its default, level-low, the line would show that now.
 for i in 0 1; do
-	[ "$(state $i irq_type)" = edge-falling ] ||
-		fail "chip$i's INT is $(state $i irq_type), not edge-falling"
+	[ "$(sim_state $i irq_type)" = edge-falling ] ||
+		fail "chip$i's INT is $(sim_state $i irq_type), not edge-falling"
 done
 
 echo "== one lost edge on a quiet chip"
-missed=$(stat can1 missed_interrupts)
-echo 1 >$sim/chip1/int_edge_miss
+missed=$(ethtool_stat can1 missed_interrupts)
+echo 1 >$SIM/chip1/int_edge_miss
 dump_start can1 2 /tmp/one.txt
 cansend can0 321#01
 # INT of chip1 is now low with no edge delivered; only the driver's own
@@ -44,10 +30,10 @@ cansend can0 321#02
 dump_wait
 cat /tmp/one.txt
 expect_lines /tmp/one.txt 2
-expect "chip1 edges missed" "$(counter 1 int_edges_missed)" 1
-[ "$(stat can1 missed_interrupts)" -gt "$missed" ] ||
+expect_eq "chip1 edges missed" "$(sim_counter 1 int_edges_missed)" 1
+[ "$(ethtool_stat can1 missed_interrupts)" -gt "$missed" ] ||
 	fail "can1 did not report finding work without an interrupt"
-[ "$(state 1 int)" -eq 1 ] || fail "chip1's INT is still asserted"
+[ "$(sim_state 1 int)" -eq 1 ] || fail "chip1's INT is still asserted"
 
 echo "== lost edges on both chips during traffic both ways"
 # A lost edge stalls a chip until the driver polls it: room in the queues
@@ -55,12 +41,12 @@ echo "== lost edges on both chips during traffic both ways"
 ip link set can0 txqueuelen 1000
 ip link set can1 txqueuelen 1000
 n=200
-for i in 0 1; do echo 0 >$sim/chip$i/counters; done
+for i in 0 1; do echo 0 >$SIM/chip$i/counters; done
 # each side sees the other's frames and the echo of its own
 dump_start can0 $((2 * n)) /tmp/at0.txt
 dump_start can1 $((2 * n)) /tmp/at1.txt
-echo 5 >$sim/chip0/int_edge_miss
-echo 5 >$sim/chip1/int_edge_miss
+echo 5 >$SIM/chip0/int_edge_miss
+echo 5 >$SIM/chip1/int_edge_miss
 cangen can0 -n $n -g 5 -I 100 -L 8 -D i &
 gen0=$!
 cangen can1 -n $n -g 5 -I 200 -L 8 -D i &
@@ -69,18 +55,18 @@ wait $gen0 || fail "cangen on can0 failed"
 wait $gen1 || fail "cangen on can1 failed"
 dump_wait
 for i in 0 1; do
-	echo "chip$i: $(counter $i int_edges_missed) edges missed, $(counter $i irqs_delivered) interrupts; can$i: $(stat can$i missed_interrupts) found by polling"
+	echo "chip$i: $(sim_counter $i int_edges_missed) edges missed, $(sim_counter $i irqs_delivered) interrupts; can$i: $(ethtool_stat can$i missed_interrupts) found by polling"
 done
 # Each side echoes all of its own frames.  A chip left unserviced until
 # the driver polls it may overflow: what it did not store, it counted.
 for i in 0 1; do
 	own=$((100 * (i + 1))) other=$((200 - 100 * i))
 	got=$(grep -c " $own  *\[8\]" /tmp/at$i.txt || true)
-	expect "can$i echoes of its frames" "$got" $n
+	expect_eq "can$i echoes of its frames" "$got" $n
 	got=$(grep -c " $other  *\[8\]" /tmp/at$i.txt || true)
-	lost=$(counter $i overflows)
+	lost=$(sim_counter $i overflows)
 	echo "can$i: received $got of the other side's frames, chip$i lost $lost"
-	expect "can$i frames received + lost" $((got + lost)) $n
+	expect_eq "can$i frames received + lost" $((got + lost)) $n
 	# one report per overflow, however many frames it cost
 	over=$(cat /sys/class/net/can$i/statistics/rx_over_errors)
 	[ "$lost" -eq 0 ] || [ "$over" -gt 0 ] || fail "can$i did not report its overflows"
@@ -94,7 +80,7 @@ for f in /tmp/at0.txt /tmp/at1.txt; do
 	done
 done
 for i in 0 1; do
-	expect "chip$i edges missed" "$(counter $i int_edges_missed)" 5
+	expect_eq "chip$i edges missed" "$(sim_counter $i int_edges_missed)" 5
 done
 ip -details -statistics link show can1
 ip link set can0 down

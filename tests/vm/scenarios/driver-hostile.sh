@@ -12,22 +12,6 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
-state() { # CHIP NAME
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/state
-}
-counter() { # CHIP NAME
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
-}
-stat() { # IF NAME: one of ethtool -S
-	ethtool -S "$1" | awk -v k="$2:" '$1 == k { print $2 }'
-}
-netstat() { # IF NAME
-	cat /sys/class/net/"$1"/statistics/"$2"
-}
-expect() { # WHAT GOT WANTED
-	[ "$2" -eq "$3" ] || fail "$1 is $2, expected $3"
-}
 log_mark() { dmesg | wc -l; }
 log_since() { # MARK [PATTERN]: kernel log lines since MARK (matching)
 	dmesg | tail -n +$(($1 + 1)) | grep -e "${2:-.}" || true
@@ -41,17 +25,13 @@ exchange() {
 }
 # recoveries_reach N: can0 has re-initialised its chip N times or more
 recoveries_reach() {
-	[ "$(stat can0 chip_recoveries)" -ge "$1" ]
+	[ "$(ethtool_stat can0 chip_recoveries)" -ge "$1" ]
 }
-# wait_for WHAT SECONDS COMMAND...: until COMMAND succeeds
-wait_for() {
-	_what=$1 _tries=$(($2 * 10))
-	shift 2
-	while ! "$@"; do
-		_tries=$((_tries - 1))
-		[ $_tries -gt 0 ] || fail "$_what: not within the time allowed"
-		sleep 0.1
-	done
+# within WHAT SECONDS COMMAND...: COMMAND succeeds within SECONDS
+within() {
+	_what=$1
+	shift
+	wait_for "$@" || fail "$_what: not within the time allowed"
 }
 
 can_up can0 125000 restart-ms 100
@@ -61,8 +41,8 @@ exchange can1 can0 101#02
 
 echo "== INT stuck low for 4 s"
 mark=$(log_mark)
-echo 0 >$sim/chip0/counters
-echo 1 >$sim/chip0/int_stuck
+echo 0 >$SIM/chip0/counters
+echo 1 >$SIM/chip0/int_stuck
 # A busy loop of the shell: it must keep running while INT is stuck.
 loops=0
 end=$(($(date +%s) + 4))
@@ -71,7 +51,7 @@ while [ "$(date +%s)" -lt $end ]; do
 done
 # While polled, the chip still delivers frames.
 exchange can1 can0 102#03
-irqs=$(counter 0 irqs_delivered)
+irqs=$(sim_counter 0 irqs_delivered)
 echo "stuck INT: $irqs interrupts taken, shell loop ran $loops times"
 log_since "$mark"
 # (How often it ran depends on the host's load; that it ran at all is the
@@ -81,70 +61,70 @@ log_since "$mark"
 # microseconds; polling takes 32 per attempt and attempts after 0.1, 0.2,
 # 0.4 ... 2 s.
 [ "$irqs" -lt 1000 ] || fail "$irqs interrupts in 4 s of stuck INT"
-expect "storm reports" "$(log_since "$mark" 'interrupt storm' | wc -l)" 1
+expect_eq "storm reports" "$(log_since "$mark" 'interrupt storm' | wc -l)" 1
 [ "$(log_since "$mark" | wc -l)" -le 5 ] || fail "the storm flooded the log"
-expect "irq_storms" "$(stat can0 irq_storms)" 1
-echo 0 >$sim/chip0/int_stuck
-wait_for "INT back" 6 sh -c "dmesg | tail -n +$((mark + 1)) | grep -q 'INT quiet again'"
-irqs=$(counter 0 irqs_delivered)
+expect_eq "irq_storms" "$(ethtool_stat can0 irq_storms)" 1
+echo 0 >$SIM/chip0/int_stuck
+within "INT back" 6 sh -c "dmesg | tail -n +$((mark + 1)) | grep -q 'INT quiet again'"
+irqs=$(sim_counter 0 irqs_delivered)
 exchange can1 can0 103#04
-[ "$(counter 0 irqs_delivered)" -gt "$irqs" ] || fail "the frame came without an interrupt"
+[ "$(sim_counter 0 irqs_delivered)" -gt "$irqs" ] || fail "the frame came without an interrupt"
 exchange can0 can1 104#05
-expect "irq_storms" "$(stat can0 irq_storms)" 1
+expect_eq "irq_storms" "$(ethtool_stat can0 irq_storms)" 1
 log_since "$mark" 'nobody cared' | grep . && fail "the kernel gave up on the irq"
 
 echo "== garbage on MISO at probe"
 ip link set can1 down
-dev=$(state 1 spi_device)
+dev=$(sim_state 1 spi_device)
 drv=/sys/bus/spi/drivers/mcp2510
 for pattern in "fixed 255" "fixed 0" "random"; do
 	echo "$dev" >$drv/unbind
 	[ ! -e /sys/class/net/can1 ] || fail "can1 still there after unbind"
-	echo "$pattern" >$sim/chip1/spi_corrupt_pattern
-	echo 4294967295 >$sim/chip1/spi_corrupt
+	echo "$pattern" >$SIM/chip1/spi_corrupt_pattern
+	echo 4294967295 >$SIM/chip1/spi_corrupt
 	mark=$(log_mark)
 	echo "$dev" >$drv/bind 2>/dev/null || true
 	log_since "$mark"
 	[ ! -e /sys/class/net/can1 ] || fail "can1 registered on garbage '$pattern'"
 	# (The debug kernel's regulator core adds its own lines to every probe.)
-	expect "log lines for a refused probe ($pattern)" \
+	expect_eq "log lines for a refused probe ($pattern)" \
 		"$(log_since "$mark" | grep -vc 'dummy supplies not allowed' || true)" 1
 	log_since "$mark" | grep -q "$dev: no mcp2510 answers on SPI: -\(ENODEV\|19\)" ||
 		fail "the refusal does not say why"
-	echo 0 >$sim/chip1/spi_corrupt
+	echo 0 >$SIM/chip1/spi_corrupt
 	echo "$dev" >$drv/unbind 2>/dev/null || true
 	echo "$dev" >$drv/bind || fail "probe failed once the garbage stopped"
-	wait_for "can1 back" 5 test -e /sys/class/net/can1
+	within "can1 back" 5 test -e /sys/class/net/can1
 done
-echo "flip 0" >$sim/chip1/spi_corrupt_pattern
+echo "flip 0" >$SIM/chip1/spi_corrupt_pattern
 can_up can1 125000 restart-ms 100
 exchange can0 can1 105#06
 
 echo "== garbage on MISO at run time"
 errors_start can0 /tmp/err.txt
-before=$(stat can0 chip_recoveries)
+before=$(ethtool_stat can0 chip_recoveries)
 n=0
 for pattern in "fixed 255" "random 7"; do
 	n=$((n + 1))
 	mark=$(log_mark)
-	echo "$pattern" >$sim/chip0/spi_corrupt_pattern
+	echo "$pattern" >$SIM/chip0/spi_corrupt_pattern
 	# The two transfers of the next health check read garbage.
-	echo 2 >$sim/chip0/spi_corrupt
-	wait_for "recovery from '$pattern'" 5 recoveries_reach $((before + n))
+	echo 2 >$SIM/chip0/spi_corrupt
+	within "recovery from '$pattern'" 5 recoveries_reach $((before + n))
 	log_since "$mark"
-	expect "'lost its configuration' lines" "$(log_since "$mark" 'lost its configuration' | wc -l)" 1
-	expect "'re-initialised' lines" "$(log_since "$mark" 're-initialised' | wc -l)" 1
+	expect_eq "'lost its configuration' lines" "$(log_since "$mark" 'lost its configuration' | wc -l)" 1
+	expect_eq "'re-initialised' lines" "$(log_since "$mark" 're-initialised' | wc -l)" 1
 	exchange can1 can0 106#07
 done
 echo "== garbage until cleared: one report, recovery when it stops"
 mark=$(log_mark)
-echo "fixed 255" >$sim/chip0/spi_corrupt_pattern
-echo 4294967295 >$sim/chip0/spi_corrupt
+echo "fixed 255" >$SIM/chip0/spi_corrupt_pattern
+echo 4294967295 >$SIM/chip0/spi_corrupt
 sleep 3
-echo 0 >$sim/chip0/spi_corrupt
-wait_for "recovery after garbage" 5 recoveries_reach $((before + 3))
+echo 0 >$SIM/chip0/spi_corrupt
+within "recovery after garbage" 5 recoveries_reach $((before + 3))
 log_since "$mark"
-expect "'lost its configuration' lines" "$(log_since "$mark" 'lost its configuration' | wc -l)" 1
+expect_eq "'lost its configuration' lines" "$(log_since "$mark" 'lost its configuration' | wc -l)" 1
 exchange can0 can1 107#08
 exchange can1 can0 108#09
 sleep 0.2
@@ -155,24 +135,24 @@ error_seen /tmp/err.txt 0x100 || fail "no 'controller restarted' error frame"
 
 echo "== chip reset in the middle of traffic"
 n=400
-rx0=$(netstat can1 rx_packets) tx0=$(netstat can0 tx_packets)
-drop0=$(netstat can0 tx_dropped)
-for i in 0 1; do echo 0 >$sim/chip$i/counters; done
-before=$(stat can0 chip_recoveries)
+rx0=$(if_stat can1 rx_packets) tx0=$(if_stat can0 tx_packets)
+drop0=$(if_stat can0 tx_dropped)
+for i in 0 1; do echo 0 >$SIM/chip$i/counters; done
+before=$(ethtool_stat can0 chip_recoveries)
 candump -T 2000 can1 >/tmp/stream.txt &
 cdpid=$!
 sleep 0.5
 cangen can0 -n $n -g 4 -I 300 -L 8 -D i -i &
 gen=$!
 sleep 0.6
-echo 1 >$sim/chip0/reset
+echo 1 >$SIM/chip0/reset
 wait $gen || fail "cangen failed"
-wait_for "recovery from the reset" 5 recoveries_reach $((before + 1))
+within "recovery from the reset" 5 recoveries_reach $((before + 1))
 wait $cdpid || true
-sent=$(($(netstat can0 tx_packets) - tx0))
-got=$(($(netstat can1 rx_packets) - rx0))
-dropped=$(($(netstat can0 tx_dropped) - drop0))
-on_bus=$(counter 0 frames_tx) stored=$(counter 1 frames_rx) lost=$(counter 1 overflows)
+sent=$(($(if_stat can0 tx_packets) - tx0))
+got=$(($(if_stat can1 rx_packets) - rx0))
+dropped=$(($(if_stat can0 tx_dropped) - drop0))
+on_bus=$(sim_counter 0 frames_tx) stored=$(sim_counter 1 frames_rx) lost=$(sim_counter 1 overflows)
 echo "can0 sent $sent, gave up $dropped; chip0 put $on_bus on the bus"
 echo "chip1 stored $stored, lost $lost to overflow; can1 received $got"
 dmesg | grep -i 'echo_skb' && fail "an echo skb complaint"
@@ -181,12 +161,12 @@ dmesg | grep -i 'echo_skb' && fail "an echo skb complaint"
 # burst after the recovery may overflow chip1, which the chip counts.
 [ "$on_bus" -ge "$sent" ] && [ "$on_bus" -le $((sent + dropped)) ] ||
 	fail "chip0 sent $on_bus frames, can0 reported $sent and gave up $dropped"
-expect "frames can1 received" "$got" "$stored"
-expect "chip1 frames stored + lost" $((stored + lost)) "$on_bus"
+expect_eq "frames can1 received" "$got" "$stored"
+expect_eq "chip1 frames stored + lost" $((stored + lost)) "$on_bus"
 dump_start can1 20 /tmp/after.txt
 cangen can0 -n 20 -g 4 -I 301 -L 8 || fail "cangen after recovery failed"
 dump_wait
-expect "frames after the recovery" "$(grep -c ' 301  *\[8\]' /tmp/after.txt || true)" 20
+expect_eq "frames after the recovery" "$(grep -c ' 301  *\[8\]' /tmp/after.txt || true)" 20
 [ "$(grep -c ' 300  *\[8\]' /tmp/stream.txt || true)" -gt 0 ] || fail "no frame before the reset"
 
 ip -details -statistics link show can0
