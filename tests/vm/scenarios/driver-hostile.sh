@@ -139,7 +139,9 @@ rx0=$(if_stat can1 rx_packets) tx0=$(if_stat can0 tx_packets)
 drop0=$(if_stat can0 tx_dropped)
 for i in 0 1; do echo 0 >$SIM/chip$i/counters; done
 before=$(ethtool_stat can0 chip_recoveries)
-candump -T 2000 can1 >/tmp/stream.txt &
+# -T: candump ends 5 s after its last frame, or after its start when no
+# frame came; the debug kernel may take seconds to get cangen going.
+candump -T 5000 can1 >/tmp/stream.txt &
 cdpid=$!
 sleep 0.5
 cangen can0 -n $n -g 4 -I 300 -L 8 -D i -i &
