@@ -1,39 +1,35 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=40 --timeout 300
 # vm-kernels: 6.1
-# Long streams through mcp2510.ko at 500 kbit/s: 10,000 frames can0 ->
+# Long streams through mcp2510.ko at 500 kbit/s: 4,000 frames can0 ->
 # can1, then floods both ways at once (can0 sends standard, can1 extended
-# identifiers).  Nothing is reordered, the driver loses nothing, and the
-# interface statistics agree with what was sent and received.
+# identifiers).  The driver loses nothing, keeps the order (but for the
+# swap below), and the interface statistics agree with what was sent and
+# received.
 #
 # Bus time runs 40 times slower than real time, for the reason given in
 # driver-traffic.sh: under TCG the guest spends milliseconds of CPU on each
 # frame (about 3 ms for both sides together, measured).  A frame of 8
 # bytes then lasts about 10 ms, so the receiver has some 20 ms to empty a
-# buffer and the 10,000 frames take about 100 s.  Bus time follows the
+# buffer and the 4,000 frames take about 40 s.  Bus time follows the
 # guest's clock, which also runs while the host does not schedule the
 # guest: a stall of more than two frame times makes the receiving chip
 # drop a frame, whatever the driver does (at time scales 28 to 60, 0.1-2%
 # of the frames on a host busy with other QEMU guests, a few per 10,000 on
 # a quieter one).  So a frame may be missing only when the receiving chip
-# counted it as an overflow and the driver reported the overflow; all
-# others arrive, in order.  Runs on Debian 12's own kernel only: the stream
-# costs about two minutes and tests no kernel-specific code, and the debug
-# kernel's bursts are in driver-traffic.
+# counted it as an overflow and the driver reported the overflow.  A stall
+# in the middle of an interrupt pass can also leave the newer of two
+# consecutive frames in RXB0 and the older in RXB1 (driver/core/irq.c
+# explains why no register tells them apart): such a pair, k+1 before k
+# right after k-1, is the only disorder accepted, and it is counted.
+# Runs on Debian 12's own kernel only: the stream tests no kernel-specific
+# code, and the debug kernel's bursts are in driver-traffic.
 #
-# The stream's candump stops 5 s after the last frame, so a lost frame at
-# the end does not cost the 20 s dump_start waits by default.  The floods'
-# keep the 20 s: can0's standard identifiers win every arbitration, so
-# can1's frames may wait until can0 has sent all of its own.
-#
-# The senders sleep while the socket's send buffer is full: with a transmit
-# queue longer than that buffer holds, a write never fails with ENOBUFS,
-# which would make cangen -p spin on poll() (a CAN socket is always
-# writable) and starve the receivers of CPU.
 set -eu
 . /lib/rig.sh
 
-stream=10000
+stream=4000
+SWAPS_FILE=/tmp/swaps.txt
 both=500
 
 show() {
@@ -42,10 +38,11 @@ show() {
 }
 
 # missing FILE SENT MODULO: how many of the SENT frames, whose identifiers
-# count up from 0 modulo MODULO, are not in candump FILE.  Fails when one
-# comes before its predecessor or twice: the order must hold.
+# count up from 0 modulo MODULO, are not in candump FILE; the number of
+# adjacent swaps goes to $SWAPS_FILE.  Fails, naming the frame, when one
+# comes twice or out of order other than in an adjacent swap.
 missing() {
-	awk -v sent="$2" -v m="$3" '
+	awk -v sent="$2" -v m="$3" -v swaps_file="$SWAPS_FILE" '
 		function hex(s,  i, n) {
 			n = 0
 			for (i = 1; i <= length(s); i++)
@@ -55,17 +52,27 @@ missing() {
 		BEGIN { prev = -1 }
 		{
 			gap = (hex($2) - prev + m) % m
+			if (gap == m - 1 && may_swap) {
+				# k-1, k+1, k: k was counted missing at k+1
+				skipped--
+				swaps++
+				may_swap = 0
+				next
+			}
 			if (gap < 1 || gap > m / 2) {
-				printf "frame %d: id %s after %x\n", NR, $2, prev
+				printf "frame %d: id %s after %x\n", NR, $2, prev | "cat >&2"
 				bad = 1
 				exit 1
 			}
+			may_swap = gap == 2
 			skipped += gap - 1
 			prev = hex($2)
 		}
 		END {
-			if (!bad)
+			if (!bad) {
 				print skipped + (sent - 1 - prev + m) % m
+				print swaps + 0 >swaps_file
+			}
 		}' "$1"
 }
 
@@ -94,6 +101,8 @@ snapshot() {
 arrived() {
 	_got=$(wc -l <"$1")
 	_lost=$(missing "$1" "$2" "$6") || fail "$3 -> $4: out of order"
+	[ "$(cat "$SWAPS_FILE")" -eq 0 ] ||
+		echo "$3 -> $4: $(cat "$SWAPS_FILE") adjacent pair(s) swapped (RXB1 held the older frame)"
 	[ "$_lost" -eq $(($2 - _got)) ] || fail "$3 -> $4: $_got frames, $_lost missing of $2"
 	eval "_ovf=\$(($(sim_counter "$5" overflows) - ovf$5))"
 	[ "$_lost" -eq "$_ovf" ] || { show; fail "$3 -> $4: $_lost frames lost, chip$5 dropped $_ovf"; }
