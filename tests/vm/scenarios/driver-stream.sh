@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=40 --timeout 300
 # vm-kernels: 6.1
-# Long streams through mcp2510.ko at 500 kbit/s: 4,000 frames can0 ->
+# Long streams through mcp2510.ko at 500 kbit/s: 10,000 frames can0 ->
 # can1, then floods both ways at once (can0 sends standard, can1 extended
 # identifiers).  The driver loses nothing, keeps the order (but for the
 # swap below), and the interface statistics agree with what was sent and
@@ -11,7 +11,7 @@
 # driver-traffic.sh: under TCG the guest spends milliseconds of CPU on each
 # frame (about 3 ms for both sides together, measured).  A frame of 8
 # bytes then lasts about 10 ms, so the receiver has some 20 ms to empty a
-# buffer and the 4,000 frames take about 40 s.  Bus time follows the
+# buffer and the 10,000 frames take about 100 s.  Bus time follows the
 # guest's clock, which also runs while the host does not schedule the
 # guest: a stall of more than two frame times makes the receiving chip
 # drop a frame, whatever the driver does (at time scales 28 to 60, 0.1-2%
@@ -28,7 +28,7 @@
 set -eu
 . /lib/rig.sh
 
-stream=4000
+stream=10000
 SWAPS_FILE=/tmp/swaps.txt
 both=500
 
