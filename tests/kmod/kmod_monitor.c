@@ -84,6 +84,8 @@ static const char *outcome(const struct sim_bus_record *rec)
 		return "error-bitrate";
 	case SIM_ERR_INJECTED:
 		return "error-injected";
+	case SIM_ERR_SENDER_LOST:
+		return "error-sender-lost";
 	default:
 		return "error";
 	}

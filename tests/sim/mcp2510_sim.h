@@ -68,6 +68,7 @@ enum sim_error_cause {
 	SIM_ERR_ACK,		/* nobody acknowledged (transmitter's ACK error) */
 	SIM_ERR_BITRATE,	/* a node at another bit rate flagged the frame */
 	SIM_ERR_INJECTED,	/* sim_bus_faults.bus_errors */
+	SIM_ERR_SENDER_LOST,	/* the sender was reset or lost power mid-frame */
 };
 
 struct sim_bus_record {

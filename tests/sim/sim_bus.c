@@ -407,12 +407,29 @@ static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
 	}
 }
 
+/*
+ * A sender reset or unpowered mid-frame stopped driving the bus: six
+ * recessive bits later every receiver flags a stuff error, so nobody takes
+ * the frame.  (The record keeps the frame's full length; the error frame
+ * comes earlier on a real bus.)
+ */
+static void sim_bus_check_sender(struct sim_bus *bus)
+{
+	if (bus->cur_sender < 0 || sim_chip_sending(bus->chips[bus->cur_sender]))
+		return;
+	bus->cur.kind = SIM_REC_ERROR;
+	bus->cur.cause = SIM_ERR_SENDER_LOST;
+}
+
 static void sim_bus_end_frame(struct sim_bus *bus)
 {
 	const struct sim_bus_record *rec = &bus->cur;
-	bool ok = rec->kind == SIM_REC_FRAME;
-	bool passive_ack = sim_bus_passive_ack_error(bus);
+	bool ok, passive_ack;
 	unsigned int i;
+
+	sim_bus_check_sender(bus);
+	ok = rec->kind == SIM_REC_FRAME;
+	passive_ack = sim_bus_passive_ack_error(bus);
 
 	bus->busy = false;
 	/* ACK delimiter, EOF and intermission: 11 recessive bits for bus-off nodes */

@@ -452,6 +452,12 @@ static void sim_chip_tec_add(struct sim_chip *chip, unsigned int n)
 	}
 }
 
+/* Still driving the frame it started: a reset or power loss ends that. */
+bool sim_chip_sending(const struct sim_chip *chip)
+{
+	return chip->tx.active;
+}
+
 /*
  * The chip's frame is over.  ok: sent and acknowledged.  Otherwise
  * count_error says whether TEC grows by 8 (CAN 2.0B rule 3; not for an

@@ -65,6 +65,7 @@ int sim_chip_tx_candidate(const struct sim_chip *chip);
 void sim_chip_tx_frame(const struct sim_chip *chip, unsigned int buf,
 		       struct can_frame *cf);
 void sim_chip_tx_start(struct sim_chip *chip, unsigned int buf);
+bool sim_chip_sending(const struct sim_chip *chip);
 void sim_chip_tx_lost(struct sim_chip *chip);
 void sim_chip_tx_end(struct sim_chip *chip, bool ok, bool count_error);
 void sim_chip_rx_ok(struct sim_chip *chip, const struct can_frame *cf);

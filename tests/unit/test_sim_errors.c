@@ -349,6 +349,30 @@ static void test_missing_ack(void **state)
 	assert_true(simh_read(&r->a, MCP2510_REG_CANINTF) & MCP2510_INT_TX0);
 }
 
+/*
+ * A sender reset in the middle of its frame stops driving the bus: the
+ * receiver flags an error and takes nothing, and the sender, back in
+ * configuration mode, counts no frame sent.
+ */
+static void test_sender_reset_mid_frame(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x123, 8, (const u8[]){ 1, 2, 3, 4, 5, 6, 7, 8 });
+	const struct sim_bus_record *rec;
+
+	simh_send(&r->a, 0, &cf);
+	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));
+	assert_true(r->bus.busy);
+	sim_chip_reset_pin(&r->a);
+	rec = next_frame(r);
+	assert_int_equal(rec->kind, SIM_REC_ERROR);
+	assert_int_equal(rec->cause, SIM_ERR_SENDER_LOST);
+	assert_int_equal(sim_chip_counters(&r->b)->frames_rx, 0);
+	assert_int_equal(sim_chip_counters(&r->b)->rx_errors, 1);
+	assert_false(simh_read(&r->b, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
+	assert_int_equal(sim_chip_counters(&r->a)->frames_tx, 0);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -359,6 +383,7 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_bit_rate_tolerance, setup_one, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_receive_error_counter, setup_one, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_missing_ack, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_sender_reset_mid_frame, setup_two, simh_teardown),
 	};
 
 	return cmocka_run_group_tests_name("sim_errors", tests, NULL, NULL);
