@@ -165,10 +165,18 @@ dmesg | grep -i 'echo_skb' && fail "an echo skb complaint"
 	fail "chip0 sent $on_bus frames, can0 reported $sent and gave up $dropped"
 expect_eq "frames can1 received" "$got" "$stored"
 expect_eq "chip1 frames stored + lost" $((stored + lost)) "$on_bus"
+# All 20 arrive, but for those chip1 dropped with both receive buffers
+# full: a host stall longer than two frame times overflows it whatever
+# the driver does (docs/vm-rig.md).
+ovf_before=$(sim_counter 1 overflows) drop_before=$(if_stat can0 tx_dropped)
 dump_start can1 20 /tmp/after.txt
 cangen can0 -n 20 -g 4 -I 301 -L 8 || fail "cangen after recovery failed"
 dump_wait
-expect_eq "frames after the recovery" "$(grep -c ' 301  *\[8\]' /tmp/after.txt || true)" 20
+after=$(grep -c ' 301  *\[8\]' /tmp/after.txt || true)
+dropped_rx=$(($(sim_counter 1 overflows) - ovf_before))
+echo "after the recovery: can1 received $after of 20, chip1 dropped $dropped_rx"
+expect_eq "can0 frames given up after the recovery" $(($(if_stat can0 tx_dropped) - drop_before)) 0
+expect_eq "frames after the recovery, received or dropped by chip1" $((after + dropped_rx)) 20
 [ "$(grep -c ' 300  *\[8\]' /tmp/stream.txt || true)" -gt 0 ] || fail "no frame before the reset"
 
 ip -details -statistics link show can0
