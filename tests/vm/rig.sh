@@ -3,6 +3,18 @@
 # debug or rt), VM_NODES, VM_VARIANT, VM_DRIVER, VM_SIM (1 when the simulated
 # chips are loaded).
 
+# The helpers below start no process where a shell builtin does: on the
+# debug kernel (KASAN, kmemleak and lockdep at every allocation, under TCG)
+# each fork+exec costs a third of a second, and polling loops run many.
+
+# nap SECONDS: sleep (fractions allowed) without a process: read's timeout
+# on a pipe nobody writes to.
+mkfifo /tmp/.rig-nap 2>/dev/null || true
+exec 7<>/tmp/.rig-nap
+nap() {
+	read -r -t "$1" _ <&7 || true
+}
+
 # Print a failure message and exit non-zero.
 fail() {
 	echo "FAIL: $*" >&2
@@ -17,9 +29,16 @@ can_up() {
 	ip link set "$_if" up || fail "cannot bring $_if up"
 }
 
-# Number of receivers registered on IF, over all of /proc/net/can's lists.
+# _rx_count IF: RX_COUNT = the number of receivers registered on IF, over
+# all of /proc/net/can's lists.
 _rx_count() {
-	cat /proc/net/can/rcvlist_* 2>/dev/null | grep -c "^ *$1 " || true
+	RX_COUNT=0
+	for _list in /proc/net/can/rcvlist_*; do
+		[ -r "$_list" ] || continue
+		while read -r _dev _; do
+			[ "$_dev" != "$1" ] || RX_COUNT=$((RX_COUNT + 1))
+		done <"$_list"
+	done
 }
 
 # dump_start IF[,FILTER...] N FILE [candump options]: candump -n N IF into
@@ -29,14 +48,15 @@ _rx_count() {
 dump_start() {
 	_if=$1 _n=$2 _file=$3
 	shift 3
-	_before=$(_rx_count "${_if%%,*}")
+	_rx_count "${_if%%,*}"
+	_before=$RX_COUNT
 	candump -n "$_n" -T 20000 "$@" "$_if" >"$_file" &
 	DUMP_PID=$!
 	_tries=0
-	while [ "$(_rx_count "${_if%%,*}")" -le "${_before:-0}" ]; do
+	while _rx_count "${_if%%,*}" && [ "$RX_COUNT" -le "$_before" ]; do
 		_tries=$((_tries + 1))
-		[ $_tries -le 100 ] || { sleep 1; break; }
-		sleep 0.05
+		[ $_tries -le 100 ] || { nap 1; break; }
+		nap 0.05
 	done
 }
 
@@ -58,7 +78,7 @@ errors_start() {
 	candump "$1,0~0,#FFFFFFFF" >"$2" &
 	ERR_PID=$!
 	while [ "$(grep -c "^ *$1 " /proc/net/can/rcvlist_err || true)" -le "$_before" ]; do
-		sleep 0.05
+		nap 0.05
 	done
 }
 errors_stop() {
@@ -82,16 +102,23 @@ SIM=/sys/kernel/debug/mcp2510-sim
 
 # if_stat IF COUNTER: one of IF's interface statistics.
 if_stat() {
-	cat "/sys/class/net/$1/statistics/$2"
+	read -r _v <"/sys/class/net/$1/statistics/$2"
+	echo "$_v"
 }
 
 # sim_counter CHIP NAME / sim_state CHIP NAME: one line of chipN/counters
 # or chipN/state.
 sim_counter() {
-	awk -v k="$2" '$1 == k { print $2 }' "$SIM/chip$1/counters"
+	_field_of "$SIM/chip$1/counters" "$2"
 }
 sim_state() {
-	awk -v k="$2" '$1 == k { print $2 }' "$SIM/chip$1/state"
+	_field_of "$SIM/chip$1/state" "$2"
+}
+# _field_of FILE KEY: the second word of FILE's line that starts with KEY.
+_field_of() {
+	while read -r _key _value _; do
+		[ "$_key" != "$2" ] || { echo "$_value"; return 0; }
+	done <"$1"
 }
 
 # ethtool_stat IF NAME: one of the driver's `ethtool -S` counters.
@@ -106,17 +133,20 @@ expect_eq() {
 
 # Whole seconds since boot.
 uptime_s() {
-	cut -d. -f1 /proc/uptime
+	read -r _up _ </proc/uptime
+	echo "${_up%%.*}"
 }
 
 # wait_for SECONDS COMMAND...: poll COMMAND until it succeeds; fails
 # (status 1) once SECONDS have passed.
 wait_for() {
-	_end=$(($(uptime_s) + $1))
+	read -r _up _ </proc/uptime
+	_end=$((${_up%%.*} + $1))
 	shift
 	while ! "$@"; do
-		[ "$(uptime_s)" -lt "$_end" ] || return 1
-		sleep 0.2
+		read -r _up _ </proc/uptime
+		[ "${_up%%.*}" -lt "$_end" ] || return 1
+		nap 0.2
 	done
 }
 
