@@ -49,10 +49,6 @@ include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
 include tests/bench/bench.mk
 
-# Last, so that the debug kernel's build (tests/vm/vm.mk) has had every
-# other step to overlap with.
-CHECK_STEPS += vmtest-debug
-
 check: deps
 	@set -e; check_start=$$(date +%s); for step in $(CHECK_STEPS); do \
 		step_start=$$(date +%s); echo "== make $$step"; \
