@@ -131,21 +131,25 @@ expect_eq() {
 	[ "$2" -eq "$3" ] || fail "$1 is $2, expected $3"
 }
 
-# Whole seconds since boot.
-uptime_s() {
+# _now: NOW_S = whole seconds since boot.  uptime_s prints it.
+_now() {
 	read -r _up _ </proc/uptime
-	echo "${_up%%.*}"
+	NOW_S=${_up%%.*}
+}
+uptime_s() {
+	_now
+	echo "$NOW_S"
 }
 
 # wait_for SECONDS COMMAND...: poll COMMAND until it succeeds; fails
 # (status 1) once SECONDS have passed.
 wait_for() {
-	read -r _up _ </proc/uptime
-	_end=$((${_up%%.*} + $1))
+	_now
+	_end=$((NOW_S + $1))
 	shift
 	while ! "$@"; do
-		read -r _up _ </proc/uptime
-		[ "${_up%%.*}" -lt "$_end" ] || return 1
+		_now
+		[ "$NOW_S" -lt "$_end" ] || return 1
 		nap 0.2
 	done
 }
