@@ -17,10 +17,31 @@
 
 #include "kmod.h"
 
-static u64 model_now(const struct mcp2510_sim *sim)
+/*
+ * The most the model may lag behind the clock, in real time.  A guest too
+ * slow to model the bus as fast as it runs (the debug kernel under TCG
+ * during a retry storm at full speed) would otherwise fall further behind
+ * at every access, each one spending longer with bottom halves off, until
+ * nothing else in the guest ran.  Beyond this lag bus time stalls instead,
+ * as if the bus had paused; so it does for a guest the host did not run
+ * for a while.
+ */
+#define MAX_LAG_NS (10 * NSEC_PER_MSEC)
+
+/* Bus time now, less whatever lag of the model exceeds MAX_LAG_NS. */
+static u64 model_now(struct mcp2510_sim *sim)
 {
-	return sim->base_model_ns +
-	       div_u64(ktime_get_ns() - sim->base_real_ns, sim->time_scale);
+	u64 real = ktime_get_ns();
+	u64 now = sim->base_model_ns +
+		  div_u64(real - sim->base_real_ns, sim->time_scale);
+	u64 next = sim_bus_next_event(&sim->bus);
+	u64 max_lag = div_u64(MAX_LAG_NS, sim->time_scale);
+
+	if (next == U64_MAX || now <= next + max_lag)
+		return now;
+	sim->base_model_ns = next + max_lag;
+	sim->base_real_ns = real;
+	return sim->base_model_ns;
 }
 
 void mcp2510_sim_lock(struct mcp2510_sim *sim) __acquires(&sim->lock)
