@@ -6,7 +6,8 @@
 #   make initramfs           base initramfs for each kernel in VM_KERNELS
 #   make vmtest              every scenario on every kernel in VM_KERNELS
 #   make vmtest-release      the same on Debian's kernels (6.1, 6.12, rt)
-#   make vmtest-debug        the same on the debug kernel, built if missing
+#   make vmtest-debug        every scenario on the debug kernel, built if
+#                            missing, whatever its vm-kernels line says
 #   make vmtest-one SCENARIO=tests/vm/scenarios/x.sh KERNEL=6.12
 #   make vm-info             release, image and KDIR of each kernel
 #
@@ -55,7 +56,7 @@ vmtest-release:
 	@$(MAKE) --no-print-directory vmtest VM_KERNELS="6.1 6.12 rt"
 
 vmtest-debug:
-	@$(MAKE) --no-print-directory vmtest VM_KERNELS=debug
+	@$(MAKE) --no-print-directory vmtest VM_KERNELS=debug VM_EVERY_SCENARIO=1
 
 CHECK_STEPS += vmtest-release
 

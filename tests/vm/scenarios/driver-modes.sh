@@ -50,7 +50,12 @@ grep -qx "bus-info: $(sim_state 1 spi_device)" /tmp/drvinfo ||
 	fail "ethtool bus-info is not chip1's SPI device $(sim_state 1 spi_device)"
 
 echo "== bit rates"
-for bitrate in 10000 20000 50000 83333 100000 125000 250000 500000 800000 1000000; do
+bitrates="10000 20000 50000 83333 100000 125000 250000 500000 800000 1000000"
+# The debug kernel spends some ten seconds on each rate (a process costs it
+# a third of a second): the lowest, a middle and the highest rate take
+# the driver's paths there.
+[ "$VM_KERNEL" != debug ] || bitrates="10000 125000 1000000"
+for bitrate in $bitrates; do
 	calc=$(mcp2510ctl bittiming "$bitrate" --clock $osc) ||
 		fail "mcp2510ctl cannot make $bitrate bit/s"
 	want=$(echo "$calc" | head -n 1)
