@@ -49,6 +49,10 @@ include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
 include tests/bench/bench.mk
 
+# Last: the scenario suite on the three kernels, so that the debug kernel's
+# build (tests/vm/vm.mk) has had every other step to overlap with.
+CHECK_STEPS += vmtest
+
 check: deps
 	@set -e; check_start=$$(date +%s); for step in $(CHECK_STEPS); do \
 		step_start=$$(date +%s); echo "== make $$step"; \
