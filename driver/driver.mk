@@ -66,7 +66,7 @@ modules-for:
 	$(call kbuild_modules,$(KDIR),$(call kernel_release,$(KDIR)))
 
 # The rig's kernels (tests/vm/vm.mk's VM_KERNELS when set).
-RIG_KERNELS = $(or $(VM_KERNELS),6.1 6.12 debug rt)
+RIG_KERNELS = $(or $(VM_KERNELS),6.1 6.12 rt debug)
 modules-rig: modules-deps
 	@set -e; for k in $(RIG_KERNELS); do \
 		kdir=$$($(TOP)/tests/vm/kernel-info $$k kdir 2>/dev/null) || { \

@@ -5,7 +5,7 @@
 #   make vm-kernel-6.1 | vm-kernel-6.12 | vm-kernel-debug | vm-kernel-rt
 #   make initramfs           base initramfs for each kernel in VM_KERNELS
 #   make vmtest              the suite on every kernel in VM_KERNELS (default
-#                            6.1, 6.12, debug and rt): what make check runs
+#                            6.1, 6.12, rt and debug): what make check runs
 #   make vmtest-release      the same on Debian's kernels (6.1, 6.12, rt)
 #   make vmtest-debug        every scenario on the debug kernel, built if
 #                            missing, whatever its vm-kernels line says
@@ -18,7 +18,9 @@
 # KDIR for a kernel: $(call vm_kdir,6.12), or tests/vm/kernel-info 6.12 kdir.
 
 VM_DIR := $(TOP)/tests/vm
-VM_KERNELS ?= 6.1 6.12 debug rt
+# The debug kernel last: make check builds it in the background, and the
+# Debian kernels are fetched while that build ends.
+VM_KERNELS ?= 6.1 6.12 rt debug
 VMTEST_DEPS +=
 export VM_KERNELS
 
