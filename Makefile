@@ -49,7 +49,7 @@ include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
 include tests/bench/bench.mk
 
-# Last: the scenario suite on the three kernels, so that the debug kernel's
+# Last: the scenario suite on the four rig kernels, so that the debug kernel's
 # build (tests/vm/vm.mk) has had every other step to overlap with.
 CHECK_STEPS += vmtest
 
