@@ -8,8 +8,12 @@
 /* Oscillator start-up timer after RESET (DS21291, AN739). */
 #define OST_CYCLES		128
 #define OST_MARGIN_US		5
-/* A chip still not answering after this many doubling waits is absent. */
-#define RESET_TRIES		8
+/*
+ * A chip still not answering after this much waiting is absent.  The
+ * start-up timer only begins once the oscillator runs, and a crystal
+ * whose supply was only just switched on takes milliseconds to get there.
+ */
+#define RESET_TIMEOUT_US	50000
 /*
  * A mode change waits for the bus to go idle: allow a few frames with
  * error frames at the configured bit rate, and never less than 10 ms.
@@ -48,18 +52,25 @@ static bool reset_values_ok(const struct mcp2510_chip *chip, const u8 regs[2])
 	       (reqop == MCP2510_MODE_CONFIG || reqop == MCP2510_MODE_POWERUP);
 }
 
+/* The next wait of a poll: twice the last one, at most POLL_MAX_US. */
+static unsigned int poll_backoff(unsigned int wait)
+{
+	return wait * 2 > POLL_MAX_US ? POLL_MAX_US : wait * 2;
+}
+
 int mcp2510_hw_reset(struct mcp2510_chip *chip)
 {
 	const u8 reset = MCP2510_INSTR_RESET;
-	unsigned int wait = ost_us(chip), try;
+	unsigned int wait = ost_us(chip), waited = 0;
 	u8 regs[2];	/* CANSTAT, CANCTRL */
 	int err;
 
 	err = mcp2510_xfer(chip, &reset, NULL, 1);
 	if (err)
 		return err;
-	for (try = 0; try < RESET_TRIES; try++) {
+	for (;;) {
 		mcp2510_delay_us(chip, wait);
+		waited += wait;
 		err = mcp2510_reg_read(chip, MCP2510_REG_CANSTAT, regs,
 				       sizeof(regs));
 		if (err)
@@ -68,9 +79,10 @@ int mcp2510_hw_reset(struct mcp2510_chip *chip)
 			mcp2510_tx_reset(chip);
 			return 0;
 		}
-		wait *= 2;
+		if (waited >= RESET_TIMEOUT_US)
+			return -ENODEV;
+		wait = poll_backoff(wait);
 	}
-	return -ENODEV;
 }
 
 static unsigned int mode_timeout_us(const struct mcp2510_chip *chip)
@@ -99,7 +111,7 @@ static int opmode_wait(struct mcp2510_chip *chip,
 			return -ETIMEDOUT;
 		mcp2510_delay_us(chip, wait);
 		waited += wait;
-		wait = wait * 2 > POLL_MAX_US ? POLL_MAX_US : wait * 2;
+		wait = poll_backoff(wait);
 	}
 }
 

@@ -98,6 +98,35 @@ static void test_reset_wait_is_short(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * An oscillator that takes longer to start than its frequency promises
+ * (here 128 cycles of a 32 kHz clock: 4 ms) is waited for, in steps of at
+ * most a millisecond; a chip that never answers is given up on after
+ * 50 ms of waiting.
+ */
+static void test_reset_waits_for_a_slow_oscillator(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct ch_node *node = &rig->node[0];
+	u64 t0, waited;
+
+	(void)state;
+	sim_bus_advance(&rig->bus, sim_chip_startup_ns(&node->sim));
+	node->sim.osc_hz = 32000;
+	t0 = sim_bus_now(&rig->bus);
+	assert_int_equal(mcp2510_hw_reset(&node->core), 0);
+	waited = sim_bus_now(&rig->bus) - t0;
+	assert_true(waited >= sim_chip_startup_ns(&node->sim));
+	assert_true(waited < sim_chip_startup_ns(&node->sim) + 1000000);
+
+	sim_chip_power(&node->sim, false);
+	t0 = sim_bus_now(&rig->bus);
+	assert_int_equal(mcp2510_hw_reset(&node->core), -ENODEV);
+	waited = sim_bus_now(&rig->bus) - t0;
+	assert_true(waited >= 50000000 && waited < 51000000);
+	ch_rig_free(rig);
+}
+
 static void test_missing_chip_is_enodev(void **state)
 {
 	static const int stuck[] = { 0x00, 0xff };
@@ -393,6 +422,7 @@ int main(void)
 		cmocka_unit_test(test_init_checks_its_arguments),
 		cmocka_unit_test(test_reset_finds_the_chip),
 		cmocka_unit_test(test_reset_wait_is_short),
+		cmocka_unit_test(test_reset_waits_for_a_slow_oscillator),
 		cmocka_unit_test(test_missing_chip_is_enodev),
 		cmocka_unit_test(test_unpowered_or_garbled_chip_is_enodev),
 		cmocka_unit_test(test_modes),
