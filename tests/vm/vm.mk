@@ -7,8 +7,8 @@
 #   make vmtest              the suite on every kernel in VM_KERNELS (default
 #                            6.1, 6.12, rt and debug): what make check runs
 #   make vmtest-release      the same on Debian's kernels (6.1, 6.12, rt)
-#   make vmtest-debug        every scenario on the debug kernel, built if
-#                            missing, whatever its vm-kernels line says
+#   make vmtest-debug        the suite on the debug kernel alone, built if
+#                            missing
 #   make vmtest-one SCENARIO=tests/vm/scenarios/x.sh KERNEL=6.12
 #   make vm-info             release, image and KDIR of each kernel
 #
@@ -57,7 +57,7 @@ vmtest-release:
 	@$(MAKE) --no-print-directory vmtest VM_KERNELS="6.1 6.12 rt"
 
 vmtest-debug:
-	@$(MAKE) --no-print-directory vmtest VM_KERNELS=debug VM_EVERY_SCENARIO=1
+	@$(MAKE) --no-print-directory vmtest VM_KERNELS=debug
 
 # make check runs vmtest last (Makefile).  The debug kernel takes some nine
 # minutes of both cores to build, so make check starts that before anything

@@ -2,7 +2,7 @@
 # vm-run: --nodes 2 --variant mcp2510
 # vm-run: --nodes 2 --variant mcp2515
 # vm-run: --nodes 2 --variant mcp25625
-# vm-kernels: 6.1 6.12 rt
+# vm-kernels: 6.1 6.12 rt debug
 # What mcp2510.ko shows once it has probed two simulated chips: the
 # binding and module aliases, the CAN core's view (bit-timing limits,
 # supported control modes: one-shot only on the MCP2515 and MCP25625), ethtool (identity, register dump: the chip
