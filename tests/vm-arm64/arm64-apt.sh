@@ -4,8 +4,8 @@
 # The host's own apt configuration is left alone (no foreign architecture
 # is added, nothing is installed): the private state reads the host's
 # sources for arm64 only, with an empty dpkg status so that apt resolves a
-# whole dependency closure.  The sourcing script sets $apt (the state's
-# directory) and defines fail().
+# whole dependency closure.  The sourcing script sets $top (the project)
+# and $apt (the state's directory), and defines fail().
 # shellcheck shell=sh
 
 arm64_apt_init() {
