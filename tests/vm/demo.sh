@@ -19,7 +19,12 @@ run ip -brief link show type can
 say "Bring both up at 125 kbit/s"
 run ip link set can0 up type can bitrate 125000
 run ip link set can1 up type can bitrate 125000
-run ip -details link show can0
+# The link state follows "up" up to a second later (rig.sh, wait_operstate):
+# until then ip would show the interface as NO-CARRIER, state DOWN.
+wait_operstate can0 || fail "can0: link state '$OPERSTATE' after up"
+wait_operstate can1 || fail "can1: link state '$OPERSTATE' after up"
+run ip -brief link show type can
+run ip -details link show can1
 
 say "can0 -> can1: standard, extended and remote frames"
 dump_start can1 3 /tmp/can1.txt

@@ -21,12 +21,35 @@ fail() {
 	exit 1
 }
 
-# can_up IF BITRATE [more "ip link set IF type can" arguments]
+# can_up IF BITRATE [more "ip link set IF type can" arguments]: configure
+# IF, bring it up, and wait until its link state says so.
 can_up() {
 	_if=$1 _br=$2
 	shift 2
 	ip link set "$_if" type can bitrate "$_br" "$@" || fail "cannot configure $_if"
 	ip link set "$_if" up || fail "cannot bring $_if up"
+	wait_operstate "$_if" up || fail "$_if: link state '$OPERSTATE' 10 s after up"
+}
+
+# wait_operstate IF [STATE [SECONDS]]: wait until IF's operstate reads STATE
+# (default up), at most SECONDS (default 10); OPERSTATE is the last value
+# read.  "ip link set IF up" returns before the link state follows: the
+# carrier comes on in the driver's open, but operstate is set later by the
+# kernel's linkwatch work, which runs non-urgent events at most once a
+# second.  A carrier-on event counts as urgent only while the qdisc is not
+# yet attached, and the work, which needs the RTNL lock the open holds,
+# runs after the qdisc is: so for up to a second ip shows IF as NO-CARRIER
+# and state DOWN (the second interface brought up in a row, typically).
+wait_operstate() {
+	_want=${2:-up}
+	_polls=$((${3:-10} * 20))
+	while read -r OPERSTATE <"/sys/class/net/$1/operstate" &&
+		[ "$OPERSTATE" != "$_want" ]; do
+		_polls=$((_polls - 1))
+		[ "$_polls" -gt 0 ] || return 1
+		nap 0.05
+	done
+	[ "$OPERSTATE" = "$_want" ]
 }
 
 # _rx_count IF: RX_COUNT = the number of receivers registered on IF, over

@@ -4,7 +4,7 @@
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp251x
 # vm-kernels: 6.1 6.12 debug
 # Two simulated chips on one bus: the interfaces appear down, come up with
-# "ip link ... bitrate", and frames (standard, extended, RTR, all lengths)
+# "ip link ... bitrate" (link state UP, no NO-CARRIER), and frames (standard, extended, RTR, all lengths)
 # cross the bus both ways, seen by candump and counted in the statistics.
 # The mcp251x run checks the model against mainline's independent driver.
 set -eu
@@ -18,7 +18,17 @@ done
 
 can_up can0 500000
 can_up can1 500000
-ip -details link show can0
+# Once up, as ip shows it: with carrier, link state UP (can1 first: the
+# link state of the interface brought up last is the one that lags).
+for i in 1 0; do
+	link=$(ip -o link show can$i)
+	case $link in
+	*NO-CARRIER* | *"state DOWN"*) fail "can$i after up: $link" ;;
+	*"state UP "*) ;;
+	*) fail "can$i: link state not UP after up: $link" ;;
+	esac
+done
+ip -details link show can1
 
 # 20 ms apart: two RX buffers must keep up even on the debug kernel under
 # TCG, where an interrupt takes milliseconds to service.
