@@ -1,7 +1,7 @@
 # Helpers for scenario scripts, in the guest at /lib/rig.sh:  . /lib/rig.sh
 # (POSIX sh, busybox ash).  Environment from vm-run: VM_KERNEL (6.1, 6.12,
 # debug or rt), VM_NODES, VM_VARIANT, VM_DRIVER, VM_SIM (1 when the simulated
-# chips are loaded).
+# chips are loaded), VM_SIM_PARAMS (--sim-param's NAME=VALUE words).
 
 # The helpers below start no process where a shell builtin does: on the
 # debug kernel (KASAN, kmemleak and lockdep at every allocation, under TCG)
@@ -180,4 +180,30 @@ wait_for() {
 # can_state_is IF STATE: ip -details shows IF in STATE (ERROR-ACTIVE, ...).
 can_state_is() {
 	ip -details link show "$1" | grep -q "state $2 "
+}
+
+# chips_load DRIVER: new simulated chips, as /init loads them before a
+# scenario (VM_NODES chips of VM_VARIANT, VM_SIM_PARAMS), bound to DRIVER
+# (mcp2510 or mcp251x) instead of VM_DRIVER: what was loaded goes first,
+# so every interface, counter and error state starts anew.  For scenarios
+# that compare the two drivers on the same chips in one run.
+chips_load() {
+	for _m in mcp2510 mcp251x mcp2510_sim; do
+		[ ! -d "/sys/module/$_m" ] || rmmod "$_m" || fail "cannot unload $_m"
+	done
+	# shellcheck disable=SC2086 # VM_SIM_PARAMS: several NAME=VALUE words
+	insmod /opt/mcp2510/modules/mcp2510-sim.ko nodes="$VM_NODES" \
+		variant="$VM_VARIANT" driver="$1" ${VM_SIM_PARAMS:-} ||
+		fail "cannot load mcp2510-sim.ko for $1"
+	case $1 in
+	mcp2510) insmod /opt/mcp2510/modules/mcp2510.ko || fail "cannot load mcp2510.ko" ;;
+	mcp251x) modprobe mcp251x || fail "cannot load mcp251x" ;;
+	*) fail "chips_load: no driver $1" ;;
+	esac
+	_polls=300
+	while [ ! -e "/sys/class/net/can$((VM_NODES - 1))" ]; do
+		_polls=$((_polls - 1))
+		[ "$_polls" -gt 0 ] || fail "can$((VM_NODES - 1)) did not appear with $1"
+		nap 0.1
+	done
 }
