@@ -22,7 +22,7 @@
 # At 125 kbit/s, bus time runs 100 times slower than real time (300 times
 # on the debug kernel) so that either driver sees each error state before
 # the next errors push the counters past it (4 errors from warning to
-# passive: 0.2 s), however busy the host.
+# passive: some 0.2 s), however busy the host.
 set -eu
 . /lib/rig.sh
 
@@ -36,8 +36,9 @@ _quiet=0
 # - mcp251x has no berr-counter callback and no berr-reporting; one-shot is
 #   this driver's on an MCP2515 only.
 differ='*.berr_counter_shown|ctrlmode.berr-reporting|ctrlmode.one-shot'
-# - Returns to a better state: the chip raises no interrupt when an EFLG
-#   flag clears, and mcp251x sends no error frame then; this driver does.
+# - Returns to a better state: the chip (model) raises no interrupt when an
+#   EFLG flag clears, and mcp251x sends no error frame a socket can receive
+#   then; this driver does.
 differ="$differ|*.recovery"
 # - mcp251x takes tx_bytes from the echo skb, which a socket with
 #   CAN_RAW_LOOPBACK off does not leave: such frames count 0 bytes.
@@ -181,7 +182,7 @@ canon_errors() {
 		[ $((_class & 64)) = 0 ] || _new=3
 		[ $((_class & 256)) = 0 ] || _level=0
 		if [ $_new -ge 0 ] && [ $_new -lt $_level ]; then
-			RECOVERY="$RECOVERY ${_w:-no-class}"
+			RECOVERY="$RECOVERY $_w"
 		elif [ "$_w" != "$_prev" ]; then
 			ERRORS="$ERRORS $_w"
 		fi
