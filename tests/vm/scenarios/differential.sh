@@ -389,6 +389,7 @@ done
 if ! diff -u /tmp/compared-mcp251x.txt /tmp/compared-mcp2510.txt >/tmp/diff.txt; then
 	echo "differential: mcp251x (-) and mcp2510 (+) differ:"
 	cat /tmp/diff.txt
-	fail "the drivers differ where they should not ($(grep -c '^+[^+]' /tmp/diff.txt) keys)"
+	keys=$(sed -n 's/^+\([^+][^ ]*\) .*/\1/p' /tmp/diff.txt | tr '\n' ' ')
+	fail "the drivers differ where they should not: $keys"
 fi
 echo "differential: ok"
