@@ -226,7 +226,7 @@ static int time_scale_get(void *data, u64 *val)
 	struct mcp2510_sim *sim = data;
 
 	mcp2510_sim_lock(sim);
-	*val = sim->time_scale;
+	*val = sim->clock.time_scale;
 	mcp2510_sim_unlock(sim);
 	return 0;
 }
@@ -246,6 +246,67 @@ static int time_scale_set(void *data, u64 val)
 DEFINE_DEBUGFS_ATTRIBUTE(time_scale_fops, time_scale_get, time_scale_set,
 			 "%llu\n");
 
+/*
+ * SPI time (kmod_spi.c): one file per parameter of struct sim_spi_timing.
+ * A change applies to the messages that start after it.
+ */
+#define SPI_TIME_ATTR(name, field, max)					\
+static int name##_get(void *data, u64 *val)				\
+{									\
+	struct mcp2510_sim *sim = data;					\
+									\
+	mcp2510_sim_lock(sim);						\
+	*val = sim->spi.timing.field;					\
+	mcp2510_sim_unlock(sim);					\
+	return 0;							\
+}									\
+									\
+static int name##_set(void *data, u64 val)				\
+{									\
+	struct mcp2510_sim *sim = data;					\
+									\
+	if (val > (max))						\
+		return -EINVAL;						\
+	mcp2510_sim_lock(sim);						\
+	sim->spi.timing.field = val;					\
+	mcp2510_sim_irq_set_delay(sim);					\
+	mcp2510_sim_unlock(sim);					\
+	return 0;							\
+}									\
+									\
+DEFINE_DEBUGFS_ATTRIBUTE(name##_fops, name##_get, name##_set, "%llu\n")
+
+SPI_TIME_ATTR(spi_time, enabled, 1);
+SPI_TIME_ATTR(spi_msg_ns, msg_ns, U32_MAX);
+SPI_TIME_ATTR(spi_cs_setup_ns, cs_setup_ns, U32_MAX);
+SPI_TIME_ATTR(spi_cs_hold_ns, cs_hold_ns, U32_MAX);
+SPI_TIME_ATTR(spi_ctlr_max_hz, ctlr_max_hz, U32_MAX);
+SPI_TIME_ATTR(irq_latency_ns, irq_latency_ns, U32_MAX);
+
+static const struct {
+	const char *name;
+	const struct file_operations *fops;
+} spi_time_files[] = {
+	{ "spi_time", &spi_time_fops },
+	{ "spi_msg_ns", &spi_msg_ns_fops },
+	{ "spi_cs_setup_ns", &spi_cs_setup_ns_fops },
+	{ "spi_cs_hold_ns", &spi_cs_hold_ns_fops },
+	{ "spi_ctlr_max_hz", &spi_ctlr_max_hz_fops },
+	{ "irq_latency_ns", &irq_latency_ns_fops },
+};
+
+static int clock_stalls_get(void *data, u64 *val)
+{
+	struct mcp2510_sim *sim = data;
+
+	mcp2510_sim_lock(sim);
+	*val = mcp2510_sim_clock_stalls(sim);
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(clock_stalls_fops, clock_stalls_get, NULL, "%llu\n");
+
 void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 {
 	struct dentry *dir = debugfs_create_dir(MCP2510_SIM_NAME, NULL);
@@ -261,6 +322,11 @@ void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 	debugfs_create_file_unsafe("time_ns", 0400, dir, sim, &time_ns_fops);
 	debugfs_create_file_unsafe("time_scale", 0600, dir, sim,
 				   &time_scale_fops);
+	debugfs_create_file_unsafe("clock_stalls", 0400, dir, sim,
+				   &clock_stalls_fops);
+	for (n = 0; n < ARRAY_SIZE(spi_time_files); n++)
+		debugfs_create_file_unsafe(spi_time_files[n].name, 0600, dir,
+					   sim, spi_time_files[n].fops);
 	for (n = 0; n < sim->nchips; n++)
 		mcp2510_sim_debugfs_chip_create(&sim->chips[n], dir);
 }
