@@ -250,38 +250,74 @@ DEFINE_DEBUGFS_ATTRIBUTE(time_scale_fops, time_scale_get, time_scale_set,
  * SPI time (kmod_spi.c): one file per parameter of struct sim_spi_timing.
  * A change applies to the messages that start after it.
  */
-#define SPI_TIME_ATTR(name, field, max)					\
+static int spi_time_get(struct mcp2510_sim *sim, u32 *field, u64 *val)
+{
+	mcp2510_sim_lock(sim);
+	*val = *field;
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+static int spi_time_set(struct mcp2510_sim *sim, u32 *field, u64 val,
+			u64 max)
+{
+	if (val > max)
+		return -EINVAL;
+	mcp2510_sim_lock(sim);
+	*field = val;
+	mcp2510_sim_irq_set_delay(sim);
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+#define SPI_TIME_ATTR(name, field)					\
+static u32 *name##_field(struct mcp2510_sim *sim)			\
+{									\
+	return &sim->spi.timing.field;					\
+}									\
+									\
 static int name##_get(void *data, u64 *val)				\
 {									\
-	struct mcp2510_sim *sim = data;					\
-									\
-	mcp2510_sim_lock(sim);						\
-	*val = sim->spi.timing.field;					\
-	mcp2510_sim_unlock(sim);					\
-	return 0;							\
+	return spi_time_get(data, name##_field(data), val);		\
 }									\
 									\
 static int name##_set(void *data, u64 val)				\
 {									\
-	struct mcp2510_sim *sim = data;					\
-									\
-	if (val > (max))						\
-		return -EINVAL;						\
-	mcp2510_sim_lock(sim);						\
-	sim->spi.timing.field = val;					\
-	mcp2510_sim_irq_set_delay(sim);					\
-	mcp2510_sim_unlock(sim);					\
-	return 0;							\
+	return spi_time_set(data, name##_field(data), val, U32_MAX);	\
 }									\
 									\
 DEFINE_DEBUGFS_ATTRIBUTE(name##_fops, name##_get, name##_set, "%llu\n")
 
-SPI_TIME_ATTR(spi_time, enabled, 1);
-SPI_TIME_ATTR(spi_msg_ns, msg_ns, U32_MAX);
-SPI_TIME_ATTR(spi_cs_setup_ns, cs_setup_ns, U32_MAX);
-SPI_TIME_ATTR(spi_cs_hold_ns, cs_hold_ns, U32_MAX);
-SPI_TIME_ATTR(spi_ctlr_max_hz, ctlr_max_hz, U32_MAX);
-SPI_TIME_ATTR(irq_latency_ns, irq_latency_ns, U32_MAX);
+static int spi_time_on_get(void *data, u64 *val)
+{
+	struct mcp2510_sim *sim = data;
+
+	mcp2510_sim_lock(sim);
+	*val = sim->spi.timing.enabled;
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+static int spi_time_on_set(void *data, u64 val)
+{
+	struct mcp2510_sim *sim = data;
+
+	if (val > 1)
+		return -EINVAL;
+	mcp2510_sim_lock(sim);
+	sim->spi.timing.enabled = val;
+	mcp2510_sim_irq_set_delay(sim);
+	mcp2510_sim_unlock(sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(spi_time_fops, spi_time_on_get, spi_time_on_set,
+			 "%llu\n");
+SPI_TIME_ATTR(spi_msg_ns, msg_ns);
+SPI_TIME_ATTR(spi_cs_setup_ns, cs_setup_ns);
+SPI_TIME_ATTR(spi_cs_hold_ns, cs_hold_ns);
+SPI_TIME_ATTR(spi_ctlr_max_hz, ctlr_max_hz);
+SPI_TIME_ATTR(irq_latency_ns, irq_latency_ns);
 
 static const struct {
 	const char *name;
