@@ -36,6 +36,7 @@ struct mcp2510_sim_harness_counters {
 	u64 spi_failed;		/* messages failed by the spi_errors fault */
 	u64 spi_mode_errors;	/* messages in SPI mode 1 or 2 (the chip does 0 and 3) */
 	u64 spi_overspeed;	/* transfers faster than the chip's SCK limit */
+	u64 spi_late_ns;	/* SPI time on: bus time CS rose later than modelled */
 };
 
 struct mcp2510_sim_chip {

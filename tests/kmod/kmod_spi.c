@@ -81,16 +81,24 @@ struct msg_run {
 /*
  * With SPI time on, the controller is busy until CS rises: sleep until
  * then and let the chip act at that bus time, even if bus time stalled
- * meanwhile.  Called and returns with the lock held.
+ * meanwhile.  A guest that oversleeps, or comes late, makes CS rise later
+ * than modelled: spi_late_ns says by how much.  Called and returns with
+ * the lock held.
  */
-static void wait_cs_rise(struct mcp2510_sim *sim, u64 cs_rise)
+static void wait_cs_rise(struct mcp2510_sim_chip *chip, u64 cs_rise)
 {
-	if (cs_rise <= sim_bus_now(&sim->bus))
-		return;
-	mcp2510_sim_unlock(sim);
-	mcp2510_sim_clock_sleep_until(sim, cs_rise);
-	mcp2510_sim_lock(sim);
-	sim_bus_advance_to(&sim->bus, cs_rise);
+	struct mcp2510_sim *sim = chip->sim;
+	u64 now = sim_bus_now(&sim->bus);
+
+	if (cs_rise > now) {
+		mcp2510_sim_unlock(sim);
+		mcp2510_sim_clock_sleep_until(sim, cs_rise);
+		mcp2510_sim_lock(sim);
+		sim_bus_advance_to(&sim->bus, cs_rise);
+		now = sim_bus_now(&sim->bus);
+	}
+	if (sim->spi.timing.enabled)
+		chip->harness.spi_late_ns += now - cs_rise;
 }
 
 /*
@@ -111,7 +119,7 @@ static void end_period(struct msg_run *run, struct spi_transfer *first,
 		sim_spi_msg_begin(&sim->spi, &run->time, sim_bus_now(&sim->bus));
 		run->begun = true;
 	}
-	wait_cs_rise(sim, sim_spi_msg_period(&sim->spi, &run->time, p->clock_ns));
+	wait_cs_rise(chip, sim_spi_msg_period(&sim->spi, &run->time, p->clock_ns));
 	sim_chip_spi(&chip->model, p->tx, p->rx, p->len);
 	if (final)
 		sim_spi_msg_end(&sim->spi, &run->time, &chip->model);
