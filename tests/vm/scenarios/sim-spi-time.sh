@@ -1,11 +1,13 @@
 #!/bin/sh
-# vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=20
+# vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=200
 # vm-kernels: 6.1 6.12 debug
 # SPI time (docs/simulator.md): off by default, when the driver's SPI
 # messages cost no bus time; on, each costs at least its host overhead on
 # the one SPI controller, and chipN/counters say how much (spi_busy_ns).
-# Bad values are refused.  Frames from the phantom, slow enough for a TCG
-# guest, all reach the stack either way.
+# Bad values are refused.  Frames from the phantom all reach the stack
+# either way.  The controller sleeps until CS rises, and under TCG a
+# guest's sleep overshoots by milliseconds: bus time runs 200 times slower,
+# so that the overshoot stays small next to a frame.
 set -eu
 . /lib/rig.sh
 
