@@ -22,6 +22,7 @@
 #include <linux/spinlock.h>
 
 #include "../sim/mcp2510_sim.h"
+#include "kmod_logic.h"
 
 #define MCP2510_SIM_NAME		"mcp2510-sim"
 #define MCP2510_SIM_LINES		(SIM_MAX_NODES * SIM_PIN_COUNT)
@@ -35,6 +36,7 @@ struct mcp2510_sim_harness_counters {
 	u64 spi_failed;		/* messages failed by the spi_errors fault */
 	u64 spi_mode_errors;	/* messages in SPI mode 1 or 2 (the chip does 0 and 3) */
 	u64 spi_overspeed;	/* transfers faster than the chip's SCK limit */
+	u64 spi_late_ns;	/* SPI time on: bus time CS rose later than modelled */
 };
 
 struct mcp2510_sim_chip {
@@ -43,23 +45,13 @@ struct mcp2510_sim_chip {
 	struct sim_chip model;
 	struct sim_counters baseline;	/* model counters at the last reset */
 	struct mcp2510_sim_harness_counters harness;
+	u64 stalls_baseline;		/* the bus clock's stalls at the last reset */
 	u32 spi_fail_left;
 	bool powered;			/* as last set through debugfs "power" */
 	u8 rts;				/* TXnRTS levels as set through debugfs "rts" */
 	struct software_node swnode;
 	char swnode_name[24];
 	struct spi_device *spi;
-};
-
-/* One output pin as the interrupt controller sees it. */
-struct mcp2510_sim_line {
-	bool level;		/* true: the pin is high */
-	bool masked;
-	bool edge_pending;
-	unsigned int type;	/* IRQ_TYPE_* */
-	u32 edge_miss;		/* falling edges still to drop */
-	u64 delivered;		/* interrupts handed to the flow handler */
-	u64 edges_missed;	/* falling edges dropped for edge_miss */
 };
 
 struct mcp2510_sim_monitor {
@@ -75,20 +67,19 @@ struct mcp2510_sim {
 	unsigned int nchips;
 	struct mcp2510_sim_monitor monitor;
 
-	/*
-	 * bus time: model ns = base_model_ns +
-	 *	(ktime_get_ns() - base_real_ns) / time_scale,
-	 * rebased whenever time_scale changes so bus time never jumps
-	 */
-	u64 base_real_ns;
-	u64 base_model_ns;
-	u32 time_scale;
+	/* bus time from ktime_get_ns(): see kmod_logic.h */
+	struct mcp2510_sim_clock clock;
 	struct hrtimer timer;
+	/* what SPI messages and interrupt delivery cost (kmod_spi.c) */
+	struct sim_spi_bus spi;
 	bool stopping;
 
 	raw_spinlock_t irq_lock;
 	struct mcp2510_sim_line lines[MCP2510_SIM_LINES];
 	struct irq_work irq_work;
+	/* the interrupt latency in real time, 0 when SPI time is off */
+	u64 irq_delay_ns;
+	struct hrtimer irq_timer;	/* delayed deliveries; under irq_lock */
 	struct gpio_chip gpio;
 	char line_names[MCP2510_SIM_LINES][MCP2510_SIM_LINE_NAME_LEN];
 	const char *line_name_ptrs[MCP2510_SIM_LINES];
@@ -115,11 +106,14 @@ struct mcp2510_sim {
 void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale);
 void mcp2510_sim_clock_rescale(struct mcp2510_sim *sim, u32 time_scale);
 void mcp2510_sim_clock_stop(struct mcp2510_sim *sim);
+void mcp2510_sim_clock_sleep_until(struct mcp2510_sim *sim, u64 model_ns);
+u64 mcp2510_sim_clock_stalls(struct mcp2510_sim *sim);
 void mcp2510_sim_lock(struct mcp2510_sim *sim) __acquires(&sim->lock);
 void mcp2510_sim_unlock(struct mcp2510_sim *sim) __releases(&sim->lock);
 
 /* kmod_irq.c */
 void mcp2510_sim_irq_init(struct mcp2510_sim *sim);
+void mcp2510_sim_irq_set_delay(struct mcp2510_sim *sim);
 int mcp2510_sim_irq_register(struct mcp2510_sim *sim);
 void mcp2510_sim_irq_unregister(struct mcp2510_sim *sim);
 void mcp2510_sim_irq_attach(struct mcp2510_sim_chip *chip);

@@ -12,36 +12,24 @@
  */
 #include <linux/hrtimer.h>
 #include <linux/ktime.h>
-#include <linux/math64.h>
-#include <linux/overflow.h>
+#include <linux/sched.h>
 
 #include "kmod.h"
 
 /*
- * The most the model may lag behind the clock, in real time.  A guest too
- * slow to model the bus as fast as it runs (the debug kernel under TCG
- * during a retry storm at full speed) would otherwise fall further behind
- * at every access, each one spending longer with bottom halves off, until
- * nothing else in the guest ran.  Beyond this lag bus time stalls instead,
- * as if the bus had paused; so it does for a guest the host did not run
- * for a while.
+ * The model may lag behind the clock by MCP2510_SIM_MAX_LAG_NS of real
+ * time at most.  A guest too slow to model the bus as fast as it runs (the
+ * debug kernel under TCG during a retry storm at full speed) would
+ * otherwise fall further behind at every access, each one spending longer
+ * with bottom halves off, until nothing else in the guest ran.  Beyond
+ * this lag bus time stalls instead, as if the bus had paused; so it does
+ * for a guest the host did not run for a while.  Each stall is counted
+ * (chipN/counters "clock_stalls"): a measurement across one is void.
  */
-#define MAX_LAG_NS (10 * NSEC_PER_MSEC)
-
-/* Bus time now, less whatever lag of the model exceeds MAX_LAG_NS. */
 static u64 model_now(struct mcp2510_sim *sim)
 {
-	u64 real = ktime_get_ns();
-	u64 now = sim->base_model_ns +
-		  div_u64(real - sim->base_real_ns, sim->time_scale);
-	u64 next = sim_bus_next_event(&sim->bus);
-	u64 max_lag = div_u64(MAX_LAG_NS, sim->time_scale);
-
-	if (next == U64_MAX || now <= next + max_lag)
-		return now;
-	sim->base_model_ns = next + max_lag;
-	sim->base_real_ns = real;
-	return sim->base_model_ns;
+	return mcp2510_sim_clock_model(&sim->clock, ktime_get_ns(),
+				       sim_bus_next_event(&sim->bus));
 }
 
 void mcp2510_sim_lock(struct mcp2510_sim *sim) __acquires(&sim->lock)
@@ -61,12 +49,8 @@ static void arm_for_next_event(struct mcp2510_sim *sim)
 	u64 next = sim_bus_next_event(&sim->bus);
 	u64 real;
 
-	if (sim->stopping || next == U64_MAX)
-		return;
-	next = max(next, sim->base_model_ns) - sim->base_model_ns;
-	if (check_mul_overflow(next, (u64)sim->time_scale, &real) ||
-	    check_add_overflow(real, sim->base_real_ns, &real) ||
-	    real > KTIME_MAX)
+	if (sim->stopping || next == U64_MAX ||
+	    !mcp2510_sim_clock_real(&sim->clock, next, &real))
 		return;
 	hrtimer_start(&sim->timer, ns_to_ktime(real), HRTIMER_MODE_ABS_SOFT);
 }
@@ -88,9 +72,7 @@ static enum hrtimer_restart bus_timer_fired(struct hrtimer *timer)
 
 void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale)
 {
-	sim->time_scale = time_scale;
-	sim->base_real_ns = ktime_get_ns();
-	sim->base_model_ns = 0;
+	mcp2510_sim_clock_start(&sim->clock, ktime_get_ns(), time_scale);
 	hrtimer_init(&sim->timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_SOFT);
 	sim->timer.function = bus_timer_fired;
 }
@@ -98,11 +80,37 @@ void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale)
 /* Called under the lock; the unlock re-arms the timer at the new pace. */
 void mcp2510_sim_clock_rescale(struct mcp2510_sim *sim, u32 time_scale)
 {
-	u64 real = ktime_get_ns();
+	mcp2510_sim_clock_set_scale(&sim->clock, ktime_get_ns(), time_scale);
+	mcp2510_sim_irq_set_delay(sim);
+}
 
-	sim->base_model_ns += div_u64(real - sim->base_real_ns, sim->time_scale);
-	sim->base_real_ns = real;
-	sim->time_scale = time_scale;
+/* Stalls of the bus clock so far; under the lock. */
+u64 mcp2510_sim_clock_stalls(struct mcp2510_sim *sim)
+{
+	return sim->clock.stalls;
+}
+
+/*
+ * Sleep, outside the lock, until bus time reaches model_ns: an SPI
+ * controller busy until CS rises.  Bus time may stall meanwhile, so the
+ * caller still brings the model to model_ns itself.
+ */
+void mcp2510_sim_clock_sleep_until(struct mcp2510_sim *sim, u64 model_ns)
+{
+	ktime_t expires;
+	u64 real;
+	bool ok;
+
+	spin_lock_bh(&sim->lock);
+	ok = mcp2510_sim_clock_real(&sim->clock, model_ns, &real);
+	spin_unlock_bh(&sim->lock);
+	if (!ok)
+		return;
+	expires = ns_to_ktime(real);
+	while (ktime_get_ns() < real) {
+		set_current_state(TASK_UNINTERRUPTIBLE);
+		schedule_hrtimeout(&expires, HRTIMER_MODE_ABS);
+	}
 }
 
 void mcp2510_sim_clock_stop(struct mcp2510_sim *sim)

@@ -30,6 +30,7 @@ static const struct {
 	MODEL_COUNTER(rx_errors),
 	MODEL_COUNTER(arbitration_lost),
 	MODEL_COUNTER(bus_off),
+	MODEL_COUNTER(spi_busy_ns),
 };
 
 static u64 counter_at(const struct sim_counters *c, size_t offset)
@@ -49,12 +50,14 @@ static int counters_show(struct seq_file *m, void *v)
 	struct mcp2510_sim_harness_counters harness;
 	struct sim_counters now, base;
 	struct mcp2510_sim_line line;
+	u64 stalls;
 	size_t i;
 
 	mcp2510_sim_lock(chip->sim);
 	now = *sim_chip_counters(&chip->model);
 	base = chip->baseline;
 	harness = chip->harness;
+	stalls = mcp2510_sim_clock_stalls(chip->sim) - chip->stalls_baseline;
 	mcp2510_sim_unlock(chip->sim);
 	mcp2510_sim_irq_describe(chip->sim, int_line(chip), &line);
 
@@ -65,8 +68,10 @@ static int counters_show(struct seq_file *m, void *v)
 	seq_printf(m, "spi_failed %llu\n", harness.spi_failed);
 	seq_printf(m, "spi_mode_errors %llu\n", harness.spi_mode_errors);
 	seq_printf(m, "spi_overspeed %llu\n", harness.spi_overspeed);
+	seq_printf(m, "spi_late_ns %llu\n", harness.spi_late_ns);
 	seq_printf(m, "irqs_delivered %llu\n", line.delivered);
 	seq_printf(m, "int_edges_missed %llu\n", line.edges_missed);
+	seq_printf(m, "clock_stalls %llu\n", stalls);
 	return 0;
 }
 
@@ -84,6 +89,7 @@ static ssize_t counters_reset(struct file *file, const char __user *ubuf,
 	mcp2510_sim_lock(chip->sim);
 	chip->baseline = *sim_chip_counters(&chip->model);
 	memset(&chip->harness, 0, sizeof(chip->harness));
+	chip->stalls_baseline = mcp2510_sim_clock_stalls(chip->sim);
 	mcp2510_sim_unlock(chip->sim);
 	mcp2510_sim_irq_reset_counts(chip->sim, int_line(chip));
 	return len;

@@ -13,8 +13,12 @@
  * handler in hard-irq context as a real GPIO controller's demultiplexer
  * would.  A level interrupt that is still asserted when it is unmasked
  * fires again, the way a level input keeps the parent interrupt raised.
+ *
+ * With SPI time on, every delivery waits the interrupt latency first (an
+ * hrtimer, then the same irq_work); kmod_logic.c keeps the lines' state.
  */
 #include <linux/gpio/driver.h>
+#include <linux/hrtimer.h>
 #include <linux/irq.h>
 #include <linux/irq_work.h>
 #include <linux/irqdesc.h>
@@ -69,38 +73,32 @@ unsigned int mcp2510_sim_line(const struct mcp2510_sim *sim, unsigned int chip,
 	return pin * sim->nchips + chip;
 }
 
-static bool line_asserted(const struct mcp2510_sim_line *line)
+/* Under irq_lock: the earliest delayed delivery gets the timer. */
+static void arm_irq_timer(struct mcp2510_sim *sim, u64 due)
 {
-	switch (line->type & IRQ_TYPE_SENSE_MASK) {
-	case IRQ_TYPE_LEVEL_LOW:
-		return !line->level;
-	case IRQ_TYPE_LEVEL_HIGH:
-		return line->level;
-	default:
-		return line->edge_pending;
-	}
+	struct hrtimer *t = &sim->irq_timer;
+
+	if (hrtimer_is_queued(t) && ktime_to_ns(hrtimer_get_expires(t)) <= due)
+		return;
+	hrtimer_start(t, ns_to_ktime(due), HRTIMER_MODE_ABS_HARD);
 }
 
-static bool line_wants_delivery(const struct mcp2510_sim_line *line)
+/*
+ * Under irq_lock, after something that may make the line want delivery:
+ * true when the caller should queue the delivery pass now; a delivery
+ * delayed by the interrupt latency gets the timer instead.
+ */
+static bool schedule_delivery(struct mcp2510_sim *sim,
+			      struct mcp2510_sim_line *line)
 {
-	return !line->masked && line_asserted(line);
-}
+	u64 delay = sim->irq_delay_ns;
 
-/* Called with irq_lock held, before line->level takes the new value. */
-static void latch_edge(struct mcp2510_sim_line *line, bool level)
-{
-	bool rising = level && !line->level;
-	bool falling = !level && line->level;
-
-	if (!(rising && (line->type & IRQ_TYPE_EDGE_RISING)) &&
-	    !(falling && (line->type & IRQ_TYPE_EDGE_FALLING)))
-		return;
-	if (falling && line->edge_miss) {
-		line->edge_miss--;
-		line->edges_missed++;
-		return;
-	}
-	line->edge_pending = true;
+	if (!mcp2510_sim_line_kick(line, delay ? ktime_get_ns() : 0, delay))
+		return false;
+	if (!delay)
+		return true;
+	arm_irq_timer(sim, line->due_ns);
+	return false;
 }
 
 static void pin_changed(void *ctx, struct sim_chip *model, enum sim_pin pin,
@@ -114,9 +112,8 @@ static void pin_changed(void *ctx, struct sim_chip *model, enum sim_pin pin,
 
 	line = &sim->lines[mcp2510_sim_line(sim, chip->index, pin)];
 	raw_spin_lock_irqsave(&sim->irq_lock, flags);
-	latch_edge(line, level);
-	line->level = level;
-	kick = line_wants_delivery(line);
+	mcp2510_sim_line_set_level(line, level);
+	kick = schedule_delivery(sim, line);
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 	if (kick)
 		irq_work_queue(&sim->irq_work);
@@ -125,20 +122,46 @@ static void pin_changed(void *ctx, struct sim_chip *model, enum sim_pin pin,
 static void deliver_pending(struct irq_work *work)
 {
 	struct mcp2510_sim *sim = container_of(work, struct mcp2510_sim, irq_work);
-	struct mcp2510_sim_line *line;
+	u64 now = ktime_get_ns(), next_due = U64_MAX;
 	unsigned int n;
 	bool fire;
 
 	for (n = 0; n < sim->gpio.ngpio; n++) {
-		line = &sim->lines[n];
 		raw_spin_lock(&sim->irq_lock);
-		fire = line_wants_delivery(line);
-		if (fire)
-			line->delivered++;
+		fire = mcp2510_sim_line_take(&sim->lines[n], now, &next_due);
 		raw_spin_unlock(&sim->irq_lock);
 		if (fire)
 			generic_handle_domain_irq(sim->gpio.irq.domain, n);
 	}
+	if (next_due == U64_MAX)
+		return;
+	raw_spin_lock(&sim->irq_lock);
+	arm_irq_timer(sim, next_due);
+	raw_spin_unlock(&sim->irq_lock);
+}
+
+static enum hrtimer_restart irq_timer_fired(struct hrtimer *timer)
+{
+	struct mcp2510_sim *sim = container_of(timer, struct mcp2510_sim,
+					       irq_timer);
+
+	irq_work_queue(&sim->irq_work);
+	return HRTIMER_NORESTART;
+}
+
+/*
+ * Under sim->lock, when SPI time or time_scale change: the interrupt
+ * latency in real time.
+ */
+void mcp2510_sim_irq_set_delay(struct mcp2510_sim *sim)
+{
+	const struct sim_spi_timing *t = &sim->spi.timing;
+	unsigned long flags;
+
+	raw_spin_lock_irqsave(&sim->irq_lock, flags);
+	sim->irq_delay_ns = t->enabled ?
+		(u64)t->irq_latency_ns * sim->clock.time_scale : 0;
+	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 }
 
 static struct mcp2510_sim *irq_data_to_sim(struct irq_data *d)
@@ -168,7 +191,7 @@ static void line_unmask(struct irq_data *d)
 	gpiochip_enable_irq(&sim->gpio, hwirq);
 	raw_spin_lock_irqsave(&sim->irq_lock, flags);
 	sim->lines[hwirq].masked = false;
-	kick = line_wants_delivery(&sim->lines[hwirq]);
+	kick = schedule_delivery(sim, &sim->lines[hwirq]);
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 	if (kick)
 		irq_work_queue(&sim->irq_work);
@@ -251,6 +274,8 @@ void mcp2510_sim_irq_init(struct mcp2510_sim *sim)
 {
 	raw_spin_lock_init(&sim->irq_lock);
 	sim->irq_work = IRQ_WORK_INIT_HARD(deliver_pending);
+	hrtimer_init(&sim->irq_timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_HARD);
+	sim->irq_timer.function = irq_timer_fired;
 }
 
 /* Before the GPIO chip exists: route the model's pin changes to the lines. */
@@ -305,7 +330,10 @@ int mcp2510_sim_irq_register(struct mcp2510_sim *sim)
 /* After the bus timer has stopped, so no pin changes anymore. */
 void mcp2510_sim_irq_unregister(struct mcp2510_sim *sim)
 {
+	/* a delivery pass may re-arm the timer once more */
+	hrtimer_cancel(&sim->irq_timer);
 	irq_work_sync(&sim->irq_work);
+	hrtimer_cancel(&sim->irq_timer);
 	gpiochip_remove(&sim->gpio);
 }
 

@@ -6,7 +6,14 @@
  * The chip acts on whole chip-select-low periods (an instruction is only
  * complete when CS rises), so the transfers of a message are gathered into
  * one buffer and handed to the model at once, split only where a transfer
- * asks for cs_change.  CS always rises at the end of a message.
+ * asks for cs_change.  CS always rises at the end of a message
+ * (kmod_logic.c decides, this file applies it to struct spi_message).
+ *
+ * With SPI time on (debugfs spi_time and friends, docs/simulator.md) a
+ * message costs what the model's SPI time arithmetic says: it waits for
+ * the bus, pays its host overhead, and each period ends, and the chip
+ * acts, when CS rises at the modelled time; the controller sleeps in real
+ * time, scaled by time_scale, until then.  Off, a period happens at once.
  */
 #include <linux/device.h>
 #include <linux/irq.h>
@@ -33,9 +40,11 @@ static size_t period_limit(struct spi_device *spi)
  * fault claims it.  The chip samples on the rising edge with the clock
  * idling low or high (modes 0 and 3); other modes or a faster clock would
  * garble real traffic, which the model cannot imitate, so they are counted.
+ * *timing: what SPI costs for this message.
  */
 static bool account_message(struct mcp2510_sim_chip *chip,
-			    const struct spi_message *msg)
+			    const struct spi_message *msg,
+			    struct sim_spi_timing *timing)
 {
 	u32 mode = msg->spi->mode & SPI_MODE_X_MASK;
 	const struct spi_transfer *xfer;
@@ -55,64 +64,106 @@ static bool account_message(struct mcp2510_sim_chip *chip,
 		chip->spi_fail_left--;
 		chip->harness.spi_failed++;
 	}
+	*timing = chip->sim->spi.timing;
 	mcp2510_sim_unlock(chip->sim);
 	return fail;
 }
 
+/* One message on its way through the controller. */
+struct msg_run {
+	struct mcp2510_sim_chip *chip;
+	struct spi_message *msg;
+	struct mcp2510_sim_period period;
+	struct sim_spi_msg time;	/* its place on the SPI bus */
+	bool begun;
+};
+
 /*
- * Run the gathered bytes of transfers @first..@last as one CS-low period and
- * hand each transfer its share of what came back on MISO.
+ * With SPI time on, the controller is busy until CS rises: sleep until
+ * then and let the chip act at that bus time, even if bus time stalled
+ * meanwhile.  A guest that oversleeps, or comes late, makes CS rise later
+ * than modelled: spi_late_ns says by how much.  Called and returns with
+ * the lock held.
  */
-static void end_period(struct mcp2510_sim_chip *chip, struct spi_message *msg,
-		       struct spi_transfer *first, struct spi_transfer *last,
-		       size_t len)
+static void wait_cs_rise(struct mcp2510_sim_chip *chip, u64 cs_rise)
 {
 	struct mcp2510_sim *sim = chip->sim;
+	u64 now = sim_bus_now(&sim->bus);
+
+	if (cs_rise > now) {
+		mcp2510_sim_unlock(sim);
+		mcp2510_sim_clock_sleep_until(sim, cs_rise);
+		mcp2510_sim_lock(sim);
+		sim_bus_advance_to(&sim->bus, cs_rise);
+		now = sim_bus_now(&sim->bus);
+	}
+	if (sim->spi.timing.enabled)
+		chip->harness.spi_late_ns += now - cs_rise;
+}
+
+/*
+ * Run the gathered bytes of transfers @first..@last as one CS-low period
+ * and hand each transfer its share of what came back on MISO.  The first
+ * period takes the message's place on the SPI bus, the last gives it up.
+ */
+static void end_period(struct msg_run *run, struct spi_transfer *first,
+		       struct spi_transfer *last, bool final)
+{
+	struct mcp2510_sim_chip *chip = run->chip;
+	struct mcp2510_sim *sim = chip->sim;
+	struct mcp2510_sim_period *p = &run->period;
 	struct spi_transfer *xfer = first;
-	size_t off = 0;
 
 	mcp2510_sim_lock(sim);
-	sim_chip_spi(&chip->model, sim->spi_tx, sim->spi_rx, len);
+	if (!run->begun) {
+		sim_spi_msg_begin(&sim->spi, &run->time, sim_bus_now(&sim->bus));
+		run->begun = true;
+	}
+	wait_cs_rise(chip, sim_spi_msg_period(&sim->spi, &run->time, p->clock_ns));
+	sim_chip_spi(&chip->model, p->tx, p->rx, p->len);
+	if (final)
+		sim_spi_msg_end(&sim->spi, &run->time, &chip->model);
 	mcp2510_sim_unlock(sim);
 
-	list_for_each_entry_from(xfer, &msg->transfers, transfer_list) {
-		if (xfer->rx_buf)
-			memcpy(xfer->rx_buf, sim->spi_rx + off, xfer->len);
-		off += xfer->len;
-		msg->actual_length += xfer->len;
+	list_for_each_entry_from(xfer, &run->msg->transfers, transfer_list) {
+		mcp2510_sim_period_give(p, xfer->rx_buf, xfer->len);
+		run->msg->actual_length += xfer->len;
 		spi_transfer_delay_exec(xfer);
 		if (xfer == last)
 			break;
 	}
+	mcp2510_sim_period_next(p);
 }
 
-static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg)
+static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
+		       const struct sim_spi_timing *timing)
 {
 	struct mcp2510_sim *sim = chip->sim;
+	u32 chip_max_hz = sim_chip_sck_max_hz(&chip->model);
+	struct msg_run run = { .chip = chip, .msg = msg };
 	struct spi_transfer *xfer, *first = NULL;
-	size_t len = 0;
+	struct mcp2510_sim_xfer x;
+	int ret;
 
+	mcp2510_sim_period_init(&run.period, sim->spi_tx, sim->spi_rx,
+				MCP2510_SIM_SPI_BUF_LEN);
 	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
-		if (xfer->len > MCP2510_SIM_SPI_BUF_LEN - len)
-			return -EMSGSIZE;
+		x.tx = xfer->tx_buf;
+		x.len = xfer->len;
+		x.speed_hz = xfer->speed_hz;
+		x.cs_change = xfer->cs_change;
+		x.last = list_is_last(&xfer->transfer_list, &msg->transfers);
+		ret = mcp2510_sim_period_add(&run.period, &x, timing,
+					     chip_max_hz);
+		if (ret < 0)
+			return ret;
 		if (!first)
 			first = xfer;
-		if (xfer->tx_buf)
-			memcpy(sim->spi_tx + len, xfer->tx_buf, xfer->len);
-		else
-			memset(sim->spi_tx + len, 0, xfer->len);
-		len += xfer->len;
-		if (xfer->cs_change &&
-		    !list_is_last(&xfer->transfer_list, &msg->transfers)) {
-			end_period(chip, msg, first, xfer, len);
+		if (ret) {
+			end_period(&run, first, xfer, x.last);
 			first = NULL;
-			len = 0;
 		}
 	}
-	if (first)
-		end_period(chip, msg, first,
-			   list_last_entry(&msg->transfers, struct spi_transfer,
-					   transfer_list), len);
 	return 0;
 }
 
@@ -120,11 +171,13 @@ static int transfer_one_message(struct spi_controller *ctlr,
 				struct spi_message *msg)
 {
 	struct mcp2510_sim *sim = ctlr_to_sim(ctlr);
+	struct sim_spi_timing timing;
 	struct mcp2510_sim_chip *chip;
 	int ret;
 
 	chip = &sim->chips[spi_get_chipselect(msg->spi, 0)];
-	ret = account_message(chip, msg) ? -EIO : run_message(chip, msg);
+	ret = account_message(chip, msg, &timing) ? -EIO :
+	      run_message(chip, msg, &timing);
 	msg->status = ret;
 	spi_finalize_current_message(ctlr);
 	return ret;

@@ -97,6 +97,7 @@ struct sim_counters {
 	u64 rx_errors;		/* errors detected as receiver */
 	u64 arbitration_lost;
 	u64 bus_off;		/* entries into bus-off */
+	u64 spi_busy_ns;	/* SPI bus time taken by this chip's messages (SPI time on) */
 };
 
 /* What a corrupted transfer returns on MISO. */
@@ -295,6 +296,62 @@ int sim_phantom_flood(struct sim_bus *bus, const struct can_frame *cf,
 		      u32 count, u32 bitrate);
 /* Frames the phantom still has to send, queue and flood together. */
 u32 sim_phantom_pending(const struct sim_bus *bus);
+
+/* ---- SPI time ------------------------------------------------------------ */
+
+/*
+ * The model's transfers take no time of their own; a harness that wants
+ * SPI to cost what it costs on a board keeps one struct sim_spi_bus per
+ * SPI controller and asks it when each chip-select-low period ends.  The
+ * chip then acts (sim_chip_spi()) at that time, when CS rises.  A message
+ * is one or more periods: its host overhead comes first, then per period
+ * CS setup, 8 bits per byte at the effective clock, CS hold.  Messages to
+ * any chip on the controller queue behind each other.  With enabled false
+ * everything happens at the time asked for, as without this.
+ */
+struct sim_spi_timing {
+	bool enabled;
+	u32 msg_ns;		/* host cost of one message: queueing, set-up, completion */
+	u32 cs_setup_ns;	/* CS falling edge to the first SCK edge */
+	u32 cs_hold_ns;		/* last SCK edge to CS rising, plus CS high time */
+	u32 ctlr_max_hz;	/* the controller's fastest SCK; 0: no limit of its own */
+	u32 irq_latency_ns;	/* INT falling to the interrupt handler running */
+};
+
+struct sim_spi_bus {
+	struct sim_spi_timing timing;
+	u64 free_at;		/* the last message handed to the bus ends here */
+};
+
+/* One message under way on a struct sim_spi_bus. */
+struct sim_spi_msg {
+	u64 start;		/* when it got the bus */
+	u64 at;			/* end of its last period so far */
+};
+
+/* Timing off, bus free. */
+void sim_spi_bus_init(struct sim_spi_bus *sb);
+/* The fastest SCK the chip's data sheet allows: 5 MHz MCP2510, 10 MHz MCP2515. */
+u32 sim_chip_sck_max_hz(const struct sim_chip *chip);
+/*
+ * The clock a transfer asking for speed_hz runs at: no faster than the
+ * controller and the chip allow (speed_hz 0: as fast as they allow).
+ */
+u32 sim_spi_speed_hz(const struct sim_spi_timing *t, u32 speed_hz,
+		     u32 chip_max_hz);
+/* SCK time of len bytes at that clock, rounded up to whole ns; 0 when off. */
+u64 sim_spi_clock_ns(const struct sim_spi_timing *t, u32 len, u32 speed_hz,
+		     u32 chip_max_hz);
+/* A message wants the bus at now: it starts when the bus is free, after its overhead. */
+void sim_spi_msg_begin(struct sim_spi_bus *sb, struct sim_spi_msg *m, u64 now);
+/* The next CS-low period, clock_ns of SCK: returns when CS rises. */
+u64 sim_spi_msg_period(const struct sim_spi_bus *sb, struct sim_spi_msg *m,
+		       u64 clock_ns);
+/* The message is done: the bus is free at m->at; the chip is charged for it. */
+void sim_spi_msg_end(struct sim_spi_bus *sb, struct sim_spi_msg *m,
+		     struct sim_chip *chip);
+/* When an interrupt whose line was asserted at asserted_at reaches its handler. */
+u64 sim_spi_irq_due(const struct sim_spi_bus *sb, u64 asserted_at);
 
 /* ---- Helpers shared with the tests --------------------------------------- */
 

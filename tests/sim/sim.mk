@@ -6,7 +6,8 @@
 #                    nothing from libc but memcpy/memset (kernel-module safe)
 
 SIM_DIR := tests/sim
-SIM_SRCS := $(SIM_DIR)/sim_chip.c $(SIM_DIR)/sim_bus.c $(SIM_DIR)/sim_frame.c
+SIM_SRCS := $(SIM_DIR)/sim_chip.c $(SIM_DIR)/sim_bus.c $(SIM_DIR)/sim_frame.c \
+	    $(SIM_DIR)/sim_spi_time.c
 SIM_CPPFLAGS := -I$(TOP)/uapi -I$(TOP)/driver/core -I$(TOP)/$(SIM_DIR)
 # symbols the model may take from its environment (the kernel has both)
 SIM_ALLOWED_SYMBOLS := memcpy memset

@@ -28,6 +28,29 @@ void ch_corrupt_after(struct ch_node *node, u64 after,
 	ch_corrupt_start(node);
 }
 
+/*
+ * One CS-low period reaching the chip.  With SPI time on, bus time runs
+ * to the moment CS rises and the chip acts then.
+ */
+static void ch_chip_spi(struct ch_node *node, const u8 *tx, u8 *rx,
+			unsigned int len)
+{
+	struct sim_spi_bus *sb = &node->rig->spi;
+	struct sim_spi_msg m;
+	u64 clock_ns;
+
+	if (!sb->timing.enabled) {
+		sim_chip_spi(&node->sim, tx, rx, len);
+		return;
+	}
+	clock_ns = sim_spi_clock_ns(&sb->timing, len, node->spi_hz,
+				    sim_chip_sck_max_hz(&node->sim));
+	sim_spi_msg_begin(sb, &m, sim_bus_now(&node->rig->bus));
+	sim_bus_advance_to(&node->rig->bus, sim_spi_msg_period(sb, &m, clock_ns));
+	sim_chip_spi(&node->sim, tx, rx, len);
+	sim_spi_msg_end(sb, &m, &node->sim);
+}
+
 static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 {
 	struct ch_node *node = ctx;
@@ -42,10 +65,10 @@ static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 	if (node->fail_at && node->xfer_count == node->fail_at) {
 		node->failed_instr = tx[0];
 		if (node->fail_reaches_chip)
-			sim_chip_spi(&node->sim, tx, rx, len);
+			ch_chip_spi(node, tx, rx, len);
 		return -EREMOTEIO;
 	}
-	sim_chip_spi(&node->sim, tx, rx, len);
+	ch_chip_spi(node, tx, rx, len);
 	if (node->after_xfer)
 		node->after_xfer(node);
 	return 0;
@@ -121,6 +144,7 @@ struct ch_rig *ch_rig_new(unsigned int n, enum mcp2510_model model)
 
 	assert_true(n <= CH_MAX_NODES);
 	sim_bus_init(&rig->bus);
+	sim_spi_bus_init(&rig->spi);
 	rig->nnodes = n;
 	for (i = 0; i < n; i++) {
 		struct ch_node *node = &rig->node[i];
@@ -162,12 +186,23 @@ bool ch_int_asserted(const struct ch_node *node)
 	return !sim_chip_pin(&node->sim, SIM_PIN_INT);
 }
 
+/* With SPI time on, the handler starts the interrupt latency after INT fell. */
+static void ch_irq_latency(struct ch_node *node)
+{
+	struct sim_bus *bus = &node->rig->bus;
+
+	if (node->rig->spi.timing.enabled)
+		sim_bus_advance_to(bus, sim_spi_irq_due(&node->rig->spi,
+							sim_bus_now(bus)));
+}
+
 unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret)
 {
 	unsigned int calls = 0;
 	int ret = 0;
 
 	while (calls < max && ch_int_asserted(node)) {
+		ch_irq_latency(node);
 		ret = mcp2510_irq_handle(&node->core);
 		calls++;
 	}

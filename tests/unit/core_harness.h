@@ -53,11 +53,18 @@ struct ch_node {
 	u64 corrupt_after;
 	u32 corrupt_periods;
 	enum sim_corrupt_kind corrupt_kind;
+	u32 spi_hz;		/* SCK asked for with SPI time on; 0: the chip's maximum */
 	void *test_ctx;
 };
 
 struct ch_rig {
 	struct sim_bus bus;
+	/*
+	 * SPI time (off unless a test sets spi.timing): see mcp2510_sim.h.
+	 * Nodes are serviced one after another, so with several nodes their
+	 * interrupt latencies add up where a real host would overlap them.
+	 */
+	struct sim_spi_bus spi;
 	struct ch_node node[CH_MAX_NODES];
 	unsigned int nnodes;
 };

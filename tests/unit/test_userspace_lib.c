@@ -5,6 +5,7 @@
  * and TEC/REC, hardware filters, the register dump, the event ring and
  * the pollable descriptor.
  */
+#define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <poll.h>
 #include <stdarg.h>
@@ -12,6 +13,7 @@
 #include <stdint.h>
 #include <setjmp.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
 
@@ -386,6 +388,63 @@ static void test_event_ring_overflow_counted(void **state)
 	mcp2510_close(b);
 }
 
+/*
+ * MCP2510_SIM_SPI_TIME makes SPI take time on buses created after it is
+ * set: a receiver on a 1 kHz SPI clock cannot empty its buffers before a
+ * burst of frames overflows them; at the chip's own clock it can.
+ */
+static unsigned int burst_received(const char *bus, uint32_t rx_spi_hz,
+				   uint32_t *overflows)
+{
+	struct mcp2510 *a = open_up(bus, 0), *b;
+	struct mcp2510_options o;
+	struct mcp2510_event ev;
+	struct mcp2510_stats s;
+	struct can_frame cf;
+	unsigned int i;
+
+	mcp2510_options_init(&o);
+	o.spi_hz = rx_spi_hz;
+	b = mcp2510_open(bus, &o);
+	assert_non_null(b);
+	assert_int_equal(mcp2510_set_bitrate(b, 500000, 0), 0);
+	assert_int_equal(mcp2510_up(b), 0);
+	for (i = 0; i < 3; i++) {
+		cf = frame(0x300, 8, (uint8_t)i);
+		assert_int_equal(mcp2510_send(a, &cf, 0), 0);
+	}
+	while (!mcp2510_recv(a, &ev, 1000))
+		;
+	while (!mcp2510_recv(b, &ev, 1000))
+		;
+	mcp2510_stats(b, &s);
+	*overflows = s.rx_overflows;
+	mcp2510_close(a);
+	mcp2510_close(b);
+	return (unsigned int)s.rx_frames;
+}
+
+static void test_spi_time_from_environment(void **state)
+{
+	uint32_t overflows;
+
+	(void)state;
+	assert_int_equal(setenv("MCP2510_SIM_SPI_TIME", "msg_ns=10,bogus=1", 1), 0);
+	assert_null(mcp2510_open("sim:badtime", NULL));
+	assert_int_equal(errno, EINVAL);
+
+	assert_int_equal(setenv("MCP2510_SIM_SPI_TIME",
+				"msg_ns=10000,cs_setup_ns=100,cs_hold_ns=100,irq_latency_ns=20000",
+				1), 0);
+	assert_int_equal(burst_received("sim:fastspi", 0, &overflows), 3);
+	assert_int_equal(overflows, 0);
+	assert_true(burst_received("sim:slowspi", 1000, &overflows) < 3);
+	assert_true(overflows > 0);
+	assert_int_equal(unsetenv("MCP2510_SIM_SPI_TIME"), 0);
+	/* off: the slow clock costs nothing */
+	assert_int_equal(burst_received("sim:offspi", 1000, &overflows), 3);
+}
+
 static bool readable(struct mcp2510 *h)
 {
 	struct pollfd p = { .fd = mcp2510_fd(h), .events = POLLIN };
@@ -436,6 +495,7 @@ static void test_bus_outlives_its_handles(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_spi_time_from_environment),
 		cmocka_unit_test(test_open_and_bittiming),
 		cmocka_unit_test(test_explicit_bittiming),
 		cmocka_unit_test(test_ctrlmodes_by_variant),

@@ -18,9 +18,19 @@
  * threads would on a real system: one waiting handle cannot make another
  * chip's receive buffers overflow.  So every handle on one bus must be
  * used from the same thread.
+ *
+ * SPI takes no time unless MCP2510_SIM_SPI_TIME is set when a bus is
+ * created, to "key=value,..." with the keys msg_ns, cs_setup_ns,
+ * cs_hold_ns, ctlr_max_hz and irq_latency_ns (struct sim_spi_timing;
+ * those not named are 0): each transfer then ends, and the chip acts,
+ * when CS rises at the modelled time, at the handle's spi_hz clamped to
+ * the chip's limit, and an interrupt reaches its handler irq_latency_ns
+ * after INT fell.
  */
 #define _GNU_SOURCE
 #include <errno.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -32,12 +42,14 @@
 #define SIM_BUS_NAME_MAX	32
 #define SIM_LOOK_NS		100000000ull	/* what a wait of 0 may run */
 #define NS_PER_MS		1000000ull
+#define SPI_TIME_ENV		"MCP2510_SIM_SPI_TIME"
 
 struct sim_transport;
 
 struct shared_bus {
 	char name[SIM_BUS_NAME_MAX];	/* "" for a private bus */
 	struct sim_bus bus;
+	struct sim_spi_bus spi;		/* what SPI costs: see the top */
 	struct sim_chip chips[SIM_MAX_NODES];
 	struct sim_transport *users[SIM_MAX_NODES];	/* NULL: chip free */
 	enum sim_variant variant[SIM_MAX_NODES];
@@ -52,6 +64,7 @@ struct sim_transport {
 	struct shared_bus *shared;
 	struct sim_chip *chip;
 	unsigned int slot;
+	uint32_t spi_hz;
 	int event_fd;
 	bool signalled;
 	void (*irq_hook)(void *ctx);
@@ -96,12 +109,40 @@ static void update_fds(struct shared_bus *sb)
 	}
 }
 
+/* With SPI time on, bus time runs to when CS rises; the chip acts then. */
+static void timed_spi(struct sim_transport *s, const uint8_t *tx, uint8_t *rx,
+		      unsigned int len)
+{
+	struct shared_bus *sb = s->shared;
+	struct sim_spi_msg m;
+	uint64_t clock_ns;
+
+	if (sb->spi.timing.enabled) {
+		clock_ns = sim_spi_clock_ns(&sb->spi.timing, len, s->spi_hz,
+					    sim_chip_sck_max_hz(s->chip));
+		sim_spi_msg_begin(&sb->spi, &m, sim_bus_now(&sb->bus));
+		sim_bus_advance_to(&sb->bus,
+				   sim_spi_msg_period(&sb->spi, &m, clock_ns));
+	}
+	sim_chip_spi(s->chip, tx, rx, len);
+	if (sb->spi.timing.enabled)
+		sim_spi_msg_end(&sb->spi, &m, s->chip);
+}
+
+/* With SPI time on, a handler starts the interrupt latency after INT fell. */
+static void irq_latency(struct shared_bus *sb)
+{
+	if (sb->spi.timing.enabled)
+		sim_bus_advance_to(&sb->bus,
+				   sim_spi_irq_due(&sb->spi, sim_bus_now(&sb->bus)));
+}
+
 static int sim_xfer(struct mcp2510_transport *t, const uint8_t *tx,
 		    uint8_t *rx, unsigned int len)
 {
 	struct sim_transport *s = to_sim(t);
 
-	sim_chip_spi(s->chip, tx, rx, len);
+	timed_spi(s, tx, rx, len);
 	update_fds(s->shared);
 	return 0;
 }
@@ -123,8 +164,10 @@ static void service_others(struct sim_transport *s)
 	for (i = 0; i < sb->nchips; i++) {
 		struct sim_transport *u = sb->users[i];
 
-		if (u && u != s && u->irq_hook && int_asserted(u))
+		if (u && u != s && u->irq_hook && int_asserted(u)) {
+			irq_latency(sb);
 			u->irq_hook(u->irq_ctx);
+		}
 	}
 }
 
@@ -163,6 +206,8 @@ static int sim_wait_irq(struct mcp2510_transport *t, int timeout_ms)
 	else
 		deadline = now + (uint64_t)timeout_ms * NS_PER_MS;
 	ret = run_until(s, deadline);
+	if (ret)
+		irq_latency(s->shared);
 	update_fds(s->shared);
 	return ret;
 }
@@ -244,6 +289,46 @@ static struct shared_bus *shared_bus_find(const char *name)
 	return NULL;
 }
 
+/* MCP2510_SIM_SPI_TIME: 0, or -EINVAL for a malformed value. */
+static int spi_time_from_env(struct sim_spi_timing *t)
+{
+	static const struct {
+		const char *key;
+		size_t offset;
+	} keys[] = {
+		{ "msg_ns", offsetof(struct sim_spi_timing, msg_ns) },
+		{ "cs_setup_ns", offsetof(struct sim_spi_timing, cs_setup_ns) },
+		{ "cs_hold_ns", offsetof(struct sim_spi_timing, cs_hold_ns) },
+		{ "ctlr_max_hz", offsetof(struct sim_spi_timing, ctlr_max_hz) },
+		{ "irq_latency_ns", offsetof(struct sim_spi_timing, irq_latency_ns) },
+	};
+	const char *p = getenv(SPI_TIME_ENV);
+
+	memset(t, 0, sizeof(*t));
+	if (!p || !*p)
+		return 0;
+	t->enabled = true;
+	while (*p) {
+		size_t i, n = strcspn(p, "=");
+		unsigned long v;
+		char *end;
+
+		for (i = 0; i < sizeof(keys) / sizeof(keys[0]); i++)
+			if (strlen(keys[i].key) == n && !strncmp(p, keys[i].key, n))
+				break;
+		if (i == sizeof(keys) / sizeof(keys[0]) || p[n] != '=')
+			return -EINVAL;
+		errno = 0;
+		v = strtoul(p + n + 1, &end, 10);
+		if (errno || end == p + n + 1 || v > UINT32_MAX ||
+		    (*end && *end != ','))
+			return -EINVAL;
+		*(uint32_t *)((char *)t + keys[i].offset) = (uint32_t)v;
+		p = *end ? end + 1 : end;
+	}
+	return 0;
+}
+
 static int shared_bus_get(const char *name, struct shared_bus **out)
 {
 	struct shared_bus *sb = name[0] ? shared_bus_find(name) : NULL;
@@ -256,6 +341,11 @@ static int shared_bus_get(const char *name, struct shared_bus **out)
 			return -ENOMEM;
 		strcpy(sb->name, name);
 		sim_bus_init(&sb->bus);
+		sim_spi_bus_init(&sb->spi);
+		if (spi_time_from_env(&sb->spi.timing)) {
+			free(sb);
+			return -EINVAL;
+		}
 		if (!name[0])
 			sim_phantom_attach(&sb->bus, 0);
 		else {
@@ -318,6 +408,7 @@ int mcp2510_sim_open(const char *bus_name,
 	if (!s)
 		return -ENOMEM;
 	s->base.ops = &sim_ops;
+	s->spi_hz = p->spi_hz;
 	s->event_fd = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
 	if (s->event_fd < 0) {
 		ret = -errno;
