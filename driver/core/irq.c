@@ -228,7 +228,9 @@ static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg)
  * enough: EFLG must agree with TEC/REC, read just after it.  When they
  * disagree (a corrupted read, or a counter crossing a limit in between)
  * both are read again; a short burst of corrupted transfers spoils at
- * most two pairs.  If none agrees the last EFLG stands.
+ * most two pairs.  Returns 1 when a pair agreed, 0 when none did: then
+ * nothing read can be trusted, and taking the last EFLG anyway is how a
+ * few garbled bytes used to put a healthy interface bus-off.
  */
 static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
 		      struct can_berr_counter *bec)
@@ -241,9 +243,12 @@ static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
 		if (err)
 			return err;
 		err = mcp2510_berr_counter(chip, bec);
-		if (err || mcp2510_error_state_plausible(*eflg, bec) ||
-		    ++tries == STATE_READ_TRIES)
+		if (err)
 			return err;
+		if (mcp2510_error_state_plausible(*eflg, bec))
+			return 1;
+		if (++tries == STATE_READ_TRIES)
+			return 0;
 		err = mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
 	}
 }
@@ -270,12 +275,19 @@ static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
 		err = state_read(chip, ovr, &eflg, &bec);
 	else
 		err = mcp2510_berr_counter(chip, &bec);
-	if (err)
+	if (err < 0)
 		return err;
-	if (state_due) {
+	if (state_due && err) {
 		mcp2510_error_state_update(chip, eflg, &bec);
 		/* an overflow since the first read: its ERRIF may be gone */
 		late = eflg & EFLG_RXOVR_ALL;
+	} else if (state_due) {
+		/*
+		 * Keep the state we had.  ERRIF is cleared, so a real change
+		 * would raise no flag again: have the next pass read EFLG.
+		 */
+		chip->irq.full_read_next = true;
+		bec = chip->bec;
 	}
 	mcp2510_error_overflow(chip, ovr | late, &bec);
 	if (f->intf & MCP2510_INT_MERR)
