@@ -43,6 +43,16 @@ const struct mcp2510_variant *mcp2510_variant_get(enum mcp2510_model model);
 /* The chip's bit-timing limits, in CAN clock (oscillator / 2) quanta. */
 extern const struct can_bittiming_const mcp2510_bittiming_const;
 
+/* One chip-select-low period of a message (see mcp2510_ops.xfer_msg). */
+struct mcp2510_xfer {
+	const u8 *tx;
+	u8 *rx;				/* may be NULL */
+	unsigned int len;
+};
+
+/* Most chip-select periods the core puts in one message. */
+#define MCP2510_XFER_MSG_MAX	2
+
 struct mcp2510_ops {
 	/*
 	 * One chip-select-low period: clock out @len bytes of @tx while
@@ -51,6 +61,17 @@ struct mcp2510_ops {
 	 * copies.  Returns 0 or a negative errno (the core reports -EIO).
 	 */
 	int (*xfer)(void *ctx, const u8 *tx, u8 *rx, unsigned int len);
+	/*
+	 * Optional: @n (at most MCP2510_XFER_MSG_MAX) chip-select-low
+	 * periods in one go, chip select rising between them only for as
+	 * long as the chip needs, with no other traffic and no sleep in
+	 * between, so that the chip sees them microseconds apart (one
+	 * spi_message).  Stops at the first period that fails.  The receive
+	 * order is exact only with it: without it the core calls xfer for
+	 * each period and a delay between them can let two frames in.
+	 */
+	int (*xfer_msg)(void *ctx, const struct mcp2510_xfer *x,
+			unsigned int n);
 	/* Wait at least @us microseconds; may sleep. */
 	void (*delay_us)(void *ctx, unsigned int us);
 };
@@ -164,6 +185,7 @@ struct mcp2510_chip {
 	struct {
 		u8 passes_to_full_read;	/* countdown to reading CANINTF/EFLG */
 		bool full_read_next;	/* both RX buffers were full */
+		bool rx1_first;		/* RXB1 holds the older frame */
 	} irq;
 };
 
@@ -268,9 +290,10 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
  * one pass is enough (the line fires again while anything is pending);
  * with chip->irq_edge set it loops until nothing is pending.  The loop is
  * bounded: a chip that never stops asserting returns -EAGAIN and counts an
- * irq storm.  Returns the number of flags handled.  Received frames are
- * delivered after their flags are cleared, so a failed clear (-EIO) makes
- * the next call read them again rather than deliver them twice.
+ * irq storm.  Returns the number of flags handled.  A received frame is
+ * delivered as soon as its buffer is released, oldest first; after a
+ * transfer error (-EIO) the chip is asked whether the release happened,
+ * so the frame is delivered either now or by a later call, not twice.
  */
 int mcp2510_irq_handle(struct mcp2510_chip *chip);
 

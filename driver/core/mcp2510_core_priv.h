@@ -14,8 +14,9 @@
 /* spi.c */
 int mcp2510_xfer(struct mcp2510_chip *chip, const u8 *tx, u8 *rx,
 		 unsigned int len);
-/* Frame registers of RX buffer @n into @regs (MCP2510_FRAME_REGS bytes). */
-int mcp2510_rxb_read(struct mcp2510_chip *chip, unsigned int n, u8 *regs);
+/* @n chip-select periods in one message (ops->xfer_msg), or one by one. */
+int mcp2510_xfer_msg(struct mcp2510_chip *chip, const struct mcp2510_xfer *x,
+		     unsigned int n);
 
 /* bringup.c */
 void mcp2510_delay_us(struct mcp2510_chip *chip, unsigned int us);

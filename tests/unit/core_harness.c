@@ -51,6 +51,22 @@ static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 	return 0;
 }
 
+/* The periods one by one, telling after_xfer how many are still to come. */
+static int ch_xfer_msg(void *ctx, const struct mcp2510_xfer *x, unsigned int n)
+{
+	struct ch_node *node = ctx;
+	unsigned int i;
+	int err = 0;
+
+	for (i = 0; i < n && !err; i++) {
+		node->msg_left = n - 1 - i;
+		err = ch_xfer(ctx, x[i].tx, x[i].rx, x[i].len);
+	}
+	node->msg_left = 0;
+	node->messages++;
+	return err;
+}
+
 static void ch_delay_us(void *ctx, unsigned int us)
 {
 	struct ch_node *node = ctx;
@@ -60,6 +76,7 @@ static void ch_delay_us(void *ctx, unsigned int us)
 
 static const struct mcp2510_ops ch_ops = {
 	.xfer = ch_xfer,
+	.xfer_msg = ch_xfer_msg,
 	.delay_us = ch_delay_us,
 };
 
