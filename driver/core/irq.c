@@ -46,6 +46,7 @@ struct irq_flags {
 	u8 eflg;
 	u8 txreq;		/* slots with TXREQ set ... */
 	bool have_txreq;	/* ... when READ STATUS was read */
+	u8 status;		/* what it read */
 	bool full;		/* CANINTF and EFLG were read */
 };
 
@@ -65,6 +66,7 @@ static void status_decode(u8 status, struct irq_flags *f)
 			f->txreq |= BIT(n);
 	}
 	f->have_txreq = true;
+	f->status = status;
 }
 
 static bool full_read_due(const struct mcp2510_chip *chip)
@@ -108,6 +110,7 @@ static int flags_read_txreq(struct mcp2510_chip *chip, struct irq_flags *f)
 	f->intf |= s.intf & MCP2510_INT_TX_ALL & chip->inte;
 	f->txreq = s.txreq;
 	f->have_txreq = true;
+	f->status = status;
 	return 0;
 }
 
@@ -422,6 +425,8 @@ static int irq_pass(struct mcp2510_chip *chip)
 	err = handle_errors(chip, &f);
 	if (err)
 		return err;
+	if (f.have_txreq)
+		mcp2510_tx_resolve(chip, f.status);
 	clear = handle_tx(chip, &f) |
 		(f.intf & (MCP2510_INT_MERR | MCP2510_INT_WAK));
 	if (clear) {
@@ -429,6 +434,9 @@ static int irq_pass(struct mcp2510_chip *chip)
 		if (err)
 			return err;
 	}
+	err = mcp2510_tx_kick(chip);
+	if (err)
+		return err;
 	return flags_count(f.intf);
 }
 

@@ -177,8 +177,10 @@ struct mcp2510_chip {
 		u8 busy;			/* bit n: slot n holds a frame */
 		u8 done;			/* sent, tx_done not yet raised */
 		u8 prio_unknown;		/* TXBnCTRL.TXP unsure after -EIO */
+		u8 staged;			/* loaded, waiting for its RTS */
+		u8 unsure;			/* RTS failed, TXREQ unknown */
 		u32 next_seq;
-		u32 prio_raises;		/* TXBnCTRL.TXP raises (BIT MODIFY) */
+		u32 stages;			/* frames that had to be staged */
 	} tx;
 
 	/* Interrupt loop state (see irq.c). */
@@ -277,7 +279,9 @@ unsigned int mcp2510_tx_free(const struct mcp2510_chip *chip);
 /*
  * Load @cf into a free buffer and request it; returns the slot used.
  * -EBUSY when no buffer is free, -ENETDOWN when not started, -EIO when the
- * transport failed (the slot stays free and the frame was not sent).
+ * transport failed and the frame was not sent (a buffer whose request
+ * may have reached the chip is kept out of use until READ STATUS shows
+ * its TXREQ clear).
  */
 int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
 
@@ -302,7 +306,8 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip);
  * Read back the mode, CNF1-3 and CANINTE (two transfers) and compare them
  * with what mcp2510_start() programmed: 0 when they agree (or the chip is
  * not started), -EBADMSG when the chip reset itself or reads garbage.
- * When they agree and frames are pending, one READ STATUS more: a busy
+ * When they agree and frames are pending (or staged, or a buffer's RTS
+ * had an unknown outcome), one READ STATUS more: a busy
  * buffer with neither TXREQ nor TXnIF set is given up (tx_aborted), so
  * a frame no interrupt will ever report cannot hold the queue.
  */

@@ -29,6 +29,10 @@ u8 mcp2510_tx_pending(const struct mcp2510_chip *chip);
 void mcp2510_tx_complete(struct mcp2510_chip *chip, u8 slots);
 /* Slots the chip dropped without sending (TXREQ gone, no TXnIF). */
 void mcp2510_tx_lost(struct mcp2510_chip *chip, u8 slots);
+/* READ STATUS @status: settle the slots whose RTS had an unknown outcome. */
+void mcp2510_tx_resolve(struct mcp2510_chip *chip, u8 status);
+/* Request the staged frames once no older frame is pending. */
+int mcp2510_tx_kick(struct mcp2510_chip *chip);
 /* Drop every queued frame, raising tx_aborted in queue order. */
 void mcp2510_tx_abort_all(struct mcp2510_chip *chip);
 
