@@ -188,12 +188,14 @@ static int rxb_recover(struct mcp2510_chip *chip, unsigned int n,
 }
 
 /*
- * Read RXBn and release it, delivering the frame once it is released.
- * The release of RXB0 is followed, in the same message, by a READ STATUS:
- * whether RXB1 was full at that moment tells which buffer holds the
- * older frame from now on (see the top of the file).  The MCP2515's READ
- * RX BUFFER releases the buffer itself when chip select rises; the
- * MCP2510 needs a BIT MODIFY of RXnIF.
+ * Read RXBn and release it in one message, delivering the frame once it
+ * is released.  The release of RXB0 is followed, in the same message, by
+ * a READ STATUS: whether RXB1 was full at that moment tells which buffer
+ * holds the older frame from now on (see the top of the file).  The
+ * MCP2515's READ RX BUFFER releases the buffer itself when chip select
+ * rises; the MCP2510 needs a BIT MODIFY of RXnIF after the READ.  When
+ * the message fails, rxb_recover() finds out whether the release
+ * happened (whatever became of the read before it).
  */
 static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
 {
@@ -203,21 +205,16 @@ static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
 	u8 tx[2 + MCP2510_FRAME_REGS] = { 0 };
 	u8 rx[2 + MCP2510_FRAME_REGS];
 	u8 status_rx[2];
-	struct mcp2510_xfer x[2];
+	struct mcp2510_xfer x[3];
 	struct can_frame cf;
 	unsigned int hdr, nx = 0;
 	int err;
 
 	hdr = rxb_read_cmd(chip, n, false, tx);
 	x[nx++] = (struct mcp2510_xfer){ tx, rx, hdr + MCP2510_FRAME_REGS };
-	if (!chip->variant->has_buffer_instrs) {
-		/* a plain READ releases nothing: read, then release */
-		err = mcp2510_xfer_msg(chip, x, nx);
-		if (err)
-			return err;
-		nx = 0;
+	/* a plain READ releases nothing */
+	if (!chip->variant->has_buffer_instrs)
 		x[nx++] = (struct mcp2510_xfer){ modify, NULL, sizeof(modify) };
-	}
 	if (!n)
 		x[nx++] = (struct mcp2510_xfer){ status_tx, status_rx,
 						 sizeof(status_tx) };
