@@ -182,8 +182,8 @@ static int rxb_recover(struct mcp2510_chip *chip, unsigned int n,
 	if (intf_rx[2] & MCP2510_INT_RX(n))
 		return 0;
 	mcp2510_frame_decode(rx + 2, cf);
-	if (!n)
-		chip->irq.rx1_first = intf_rx[2] & MCP2510_INT_RX(1);
+	/* later than a READ STATUS in the message would be, but close */
+	chip->irq.rx1_first = !n && intf_rx[2] & MCP2510_INT_RX(1);
 	return 1;
 }
 
