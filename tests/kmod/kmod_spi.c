@@ -6,7 +6,8 @@
  * The chip acts on whole chip-select-low periods (an instruction is only
  * complete when CS rises), so the transfers of a message are gathered into
  * one buffer and handed to the model at once, split only where a transfer
- * asks for cs_change.  CS always rises at the end of a message.
+ * asks for cs_change.  CS always rises at the end of a message.  All
+ * periods of a message happen at the same bus time (see run_message()).
  */
 #include <linux/device.h>
 #include <linux/irq.h>
@@ -59,60 +60,58 @@ static bool account_message(struct mcp2510_sim_chip *chip,
 	return fail;
 }
 
-/*
- * Run the gathered bytes of transfers @first..@last as one CS-low period and
- * hand each transfer its share of what came back on MISO.
- */
-static void end_period(struct mcp2510_sim_chip *chip, struct spi_message *msg,
-		       struct spi_transfer *first, struct spi_transfer *last,
-		       size_t len)
+/* Whether CS rises after @xfer: a cs_change inside, or the message's end. */
+static bool period_ends(const struct spi_message *msg,
+			const struct spi_transfer *xfer)
 {
-	struct mcp2510_sim *sim = chip->sim;
-	struct spi_transfer *xfer = first;
-	size_t off = 0;
-
-	mcp2510_sim_lock(sim);
-	sim_chip_spi(&chip->model, sim->spi_tx, sim->spi_rx, len);
-	mcp2510_sim_unlock(sim);
-
-	list_for_each_entry_from(xfer, &msg->transfers, transfer_list) {
-		if (xfer->rx_buf)
-			memcpy(xfer->rx_buf, sim->spi_rx + off, xfer->len);
-		off += xfer->len;
-		msg->actual_length += xfer->len;
-		spi_transfer_delay_exec(xfer);
-		if (xfer == last)
-			break;
-	}
+	return xfer->cs_change ||
+	       list_is_last(&xfer->transfer_list, &msg->transfers);
 }
 
+/*
+ * The periods of one message happen at one bus instant.  On real hardware
+ * they follow each other within microseconds; here the guest may not run
+ * for milliseconds between two of them, and bringing the model up to the
+ * clock in between would deliver frames no real bus could in that gap
+ * (the driver's receive order relies on two frames never arriving
+ * between two periods of one message).
+ */
 static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg)
 {
 	struct mcp2510_sim *sim = chip->sim;
-	struct spi_transfer *xfer, *first = NULL;
-	size_t len = 0;
+	struct spi_transfer *xfer;
+	size_t len = 0, start = 0;
 
 	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
 		if (xfer->len > MCP2510_SIM_SPI_BUF_LEN - len)
 			return -EMSGSIZE;
-		if (!first)
-			first = xfer;
 		if (xfer->tx_buf)
 			memcpy(sim->spi_tx + len, xfer->tx_buf, xfer->len);
 		else
 			memset(sim->spi_tx + len, 0, xfer->len);
 		len += xfer->len;
-		if (xfer->cs_change &&
-		    !list_is_last(&xfer->transfer_list, &msg->transfers)) {
-			end_period(chip, msg, first, xfer, len);
-			first = NULL;
-			len = 0;
-		}
 	}
-	if (first)
-		end_period(chip, msg, first,
-			   list_last_entry(&msg->transfers, struct spi_transfer,
-					   transfer_list), len);
+
+	len = 0;
+	mcp2510_sim_lock(sim);
+	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
+		len += xfer->len;
+		if (!period_ends(msg, xfer))
+			continue;
+		sim_chip_spi(&chip->model, sim->spi_tx + start,
+			     sim->spi_rx + start, len - start);
+		start = len;
+	}
+	mcp2510_sim_unlock(sim);
+
+	len = 0;
+	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
+		if (xfer->rx_buf)
+			memcpy(xfer->rx_buf, sim->spi_rx + len, xfer->len);
+		len += xfer->len;
+		msg->actual_length += xfer->len;
+		spi_transfer_delay_exec(xfer);
+	}
 	return 0;
 }
 
