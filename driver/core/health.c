@@ -29,17 +29,19 @@ static int health_tx_check(struct mcp2510_chip *chip)
 	unsigned int n;
 	int err;
 
-	if (!mcp2510_tx_pending(chip))
+	if (!mcp2510_tx_pending(chip) && !chip->tx.unsure && !chip->tx.staged)
 		return 0;
 	err = mcp2510_read_status(chip, &status);
 	if (err)
 		return err;
+	mcp2510_tx_resolve(chip, status);
 	for (n = 0; n < MCP2510_TXB_COUNT; n++)
 		if (!(status & (MCP2510_STATUS_TXREQ(n) |
 				MCP2510_STATUS_TXIF(n))))
 			gone |= BIT(n);
 	mcp2510_tx_lost(chip, gone);
-	return 0;
+	/* staged frames whose turn came while an RTS failed */
+	return mcp2510_tx_kick(chip);
 }
 
 int mcp2510_health_check(struct mcp2510_chip *chip)

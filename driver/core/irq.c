@@ -12,26 +12,30 @@
  * overflow may follow), and while the chip is not error-active (so that a
  * recovery from bus-off is seen at the next interrupt of any kind).
  *
- * Flags are cleared with one BIT MODIFY naming only the flags handled, so
- * a flag raised meanwhile survives and asserts INT again.  ERRIF is the
- * exception: it is cleared on its own before EFLG is read again for the
+ * TX, error and wake-up flags are cleared with one BIT MODIFY naming only
+ * the flags handled, so a flag raised meanwhile survives and asserts INT
+ * again.  ERRIF is cleared on its own before EFLG is read again for the
  * state (see handle_errors()).  A buffer whose RXnIF is set is never
- * overwritten by the chip, so reading it before the clear cannot lose a
- * frame.
+ * overwritten by the chip, so reading it before its release cannot lose
+ * a frame; each RX buffer is released right after it is read, and its
+ * frame delivered then, so that neither error handling nor a failed
+ * transfer later in the pass holds a buffer or loses a frame.
  *
- * RXB0 is read before RXB1: with rollover a frame only goes to RXB1 while
- * RXB0 is full, so when both are seen full RXB0's frame is usually the
- * older one.  Not always: a pass that saw only RXB0 full keeps it full
- * until its clear, so frame B arriving meanwhile rolls over to RXB1, and
- * frame C arriving after the clear takes RXB0.  The next pass finds both
- * full with the newer frame in RXB0.  It cannot tell that from RXB0 having
- * stayed full all along: no register records the order of arrival
- * (FILHIT and RX STATUS name the filter and the buffer, not the time),
- * and an overflow flag only says a frame was lost.  Another READ STATUS
- * after every clear would narrow the window, not close it (B and C may
- * both arrive before it), at one more transfer per received frame.  So
- * under a flood two adjacent frames may reach the stack swapped; the
- * soak counts them.
+ * Receive order.  With rollover (the default filters) a frame enters
+ * RXB1 only while RXB0 is full.  So RXB1 holds the older frame exactly
+ * when it was full at the moment RXB0 was released: every frame that
+ * takes RXB0 after that is newer.  No register records the order, but
+ * that moment can be watched: the release of RXB0 (the MCP2515's READ RX
+ * BUFFER 0 itself, the MCP2510's BIT MODIFY of RX0IF after reading it)
+ * is followed, in the same SPI message, by a READ STATUS, and when it
+ * shows RX1IF the next pass reads RXB1 first (irq.rx1_first).  The READ
+ * STATUS comes a few microseconds after the release, with chip select
+ * high only in between; it would be wrong only if two frames completed
+ * in that gap (one taking RXB0, the next RXB1), and frames are at least
+ * 47 bit times apart.  Without ops->xfer_msg the two periods are
+ * separate transfers and a delay between them reopens that window.
+ * Frames that go to RXB1 directly (rollover off, or a frame only RXB1's
+ * filters accept) make the order between the buffers unknowable.
  */
 #include "mcp2510_core_priv.h"
 
@@ -42,6 +46,7 @@ struct irq_flags {
 	u8 eflg;
 	u8 txreq;		/* slots with TXREQ set ... */
 	bool have_txreq;	/* ... when READ STATUS was read */
+	u8 status;		/* what it read */
 	bool full;		/* CANINTF and EFLG were read */
 };
 
@@ -61,6 +66,7 @@ static void status_decode(u8 status, struct irq_flags *f)
 			f->txreq |= BIT(n);
 	}
 	f->have_txreq = true;
+	f->status = status;
 }
 
 static bool full_read_due(const struct mcp2510_chip *chip)
@@ -104,6 +110,7 @@ static int flags_read_txreq(struct mcp2510_chip *chip, struct irq_flags *f)
 	f->intf |= s.intf & MCP2510_INT_TX_ALL & chip->inte;
 	f->txreq = s.txreq;
 	f->have_txreq = true;
+	f->status = status;
 	return 0;
 }
 
@@ -132,35 +139,127 @@ static int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 	return err;
 }
 
-/*
- * Read the flagged RX buffers, oldest first, into @frames; returns how
- * many.  Delivery waits until their flags are cleared: should the clear
- * fail, the next pass reads them again instead of delivering them twice.
- */
-static int rx_read(struct mcp2510_chip *chip, u8 intf,
-		   struct can_frame frames[MCP2510_RXB_COUNT])
+/* Instruction bytes in front of a receive buffer's registers. */
+static unsigned int rxb_read_cmd(const struct mcp2510_chip *chip,
+				 unsigned int n, bool plain, u8 *tx)
 {
-	u8 regs[MCP2510_FRAME_REGS];
-	unsigned int n;
-	int count = 0, err;
+	if (chip->variant->has_buffer_instrs && !plain) {
+		tx[0] = MCP2515_INSTR_READ_RX_BUFFER | MCP2515_READ_RXB_SIDH(n);
+		return 1;
+	}
+	tx[0] = MCP2510_INSTR_READ;
+	tx[1] = MCP2510_REG_RXBSIDH(n);
+	return 2;
+}
+
+/*
+ * The transfer that was to release RXBn failed, and it may or may not
+ * have reached the chip.  Read the buffer, then CANINTF, in one message:
+ * RXnIF clear means the release happened and no frame has taken the
+ * buffer since, so the registers just read still hold the frame, which
+ * must be delivered now or never.  RXnIF set means the chip kept it (a
+ * frame arriving in between could also set it, but the failed transfer
+ * was microseconds ago): the next pass reads it.  Returns 1 with the
+ * frame in @cf, 0 when the chip kept it, or -EIO.
+ */
+static int rxb_recover(struct mcp2510_chip *chip, unsigned int n,
+		       struct can_frame *cf)
+{
+	u8 tx[2 + MCP2510_FRAME_REGS] = { 0 };
+	u8 rx[2 + MCP2510_FRAME_REGS];
+	const u8 intf_tx[3] = { MCP2510_INSTR_READ, MCP2510_REG_CANINTF };
+	u8 intf_rx[3];
+	struct mcp2510_xfer x[2] = {
+		{ tx, rx, 0 },
+		{ intf_tx, intf_rx, sizeof(intf_tx) },
+	};
+	int err;
+
+	x[0].len = rxb_read_cmd(chip, n, true, tx) + MCP2510_FRAME_REGS;
+	err = mcp2510_xfer_msg(chip, x, ARRAY_SIZE(x));
+	if (err)
+		return err;
+	if (intf_rx[2] & MCP2510_INT_RX(n))
+		return 0;
+	mcp2510_frame_decode(rx + 2, cf);
+	/* later than a READ STATUS in the message would be, but close */
+	chip->irq.rx1_first = !n && intf_rx[2] & MCP2510_INT_RX(1);
+	return 1;
+}
+
+/*
+ * Read RXBn and release it in one message, delivering the frame once it
+ * is released.  The release of RXB0 is followed, in the same message, by
+ * a READ STATUS: whether RXB1 was full at that moment tells which buffer
+ * holds the older frame from now on (see the top of the file).  The
+ * MCP2515's READ RX BUFFER releases the buffer itself when chip select
+ * rises; the MCP2510 needs a BIT MODIFY of RXnIF after the READ.  When
+ * the message fails, rxb_recover() finds out whether the release
+ * happened (whatever became of the read before it).
+ */
+static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
+{
+	const u8 modify[4] = { MCP2510_INSTR_BIT_MODIFY, MCP2510_REG_CANINTF,
+			       MCP2510_INT_RX(n), 0 };
+	const u8 status_tx[2] = { MCP2510_INSTR_READ_STATUS, 0 };
+	u8 tx[2 + MCP2510_FRAME_REGS] = { 0 };
+	u8 rx[2 + MCP2510_FRAME_REGS];
+	u8 status_rx[2];
+	struct mcp2510_xfer x[3];
+	struct can_frame cf;
+	unsigned int hdr, nx = 0;
+	int err;
+
+	hdr = rxb_read_cmd(chip, n, false, tx);
+	x[nx++] = (struct mcp2510_xfer){ tx, rx, hdr + MCP2510_FRAME_REGS };
+	/* a plain READ releases nothing */
+	if (!chip->variant->has_buffer_instrs)
+		x[nx++] = (struct mcp2510_xfer){ modify, NULL, sizeof(modify) };
+	if (!n)
+		x[nx++] = (struct mcp2510_xfer){ status_tx, status_rx,
+						 sizeof(status_tx) };
+	err = mcp2510_xfer_msg(chip, x, nx);
+	if (err) {
+		int ret = rxb_recover(chip, n, &cf);
+
+		if (ret > 0 && chip->events->rx)
+			chip->events->rx(chip->ctx, &cf);
+		return err;
+	}
+	if (n)
+		chip->irq.rx1_first = false;
+	else
+		chip->irq.rx1_first = status_rx[1] & MCP2510_STATUS_RX1IF;
+	mcp2510_frame_decode(rx + hdr, &cf);
+	if (chip->events->rx)
+		chip->events->rx(chip->ctx, &cf);
+	return 0;
+}
+
+/*
+ * Take the flagged RX buffers, the older frame first.  Each frame is
+ * delivered as soon as its buffer is released, so an error later in the
+ * pass neither loses it (the MCP2515's READ RX BUFFER released it
+ * already) nor holds a buffer the chip could fill meanwhile.
+ */
+static int rx_take(struct mcp2510_chip *chip, u8 intf)
+{
+	unsigned int first = chip->irq.rx1_first && intf & MCP2510_INT_RX(1);
+	unsigned int i;
+	int err;
 
 	if ((intf & MCP2510_INT_RX_ALL) == MCP2510_INT_RX_ALL)
 		chip->irq.full_read_next = true;
-	for (n = 0; n < MCP2510_RXB_COUNT; n++) {
+	for (i = 0; i < MCP2510_RXB_COUNT; i++) {
+		unsigned int n = i ? !first : first;
+
 		if (!(intf & MCP2510_INT_RX(n)))
 			continue;
-		err = mcp2510_rxb_read(chip, n, regs);
+		err = rxb_take(chip, n);
 		if (err)
 			return err;
-		mcp2510_frame_decode(regs, &frames[count++]);
 	}
-	return count;
-}
-
-/* RXnIF to clear by hand: READ RX BUFFER clears its own. */
-static u8 rx_clear_mask(const struct mcp2510_chip *chip, u8 intf)
-{
-	return chip->variant->has_buffer_instrs ? 0 : intf & MCP2510_INT_RX_ALL;
+	return 0;
 }
 
 /* Returns the CANINTF bits to clear. */
@@ -228,7 +327,9 @@ static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg)
  * enough: EFLG must agree with TEC/REC, read just after it.  When they
  * disagree (a corrupted read, or a counter crossing a limit in between)
  * both are read again; a short burst of corrupted transfers spoils at
- * most two pairs.  If none agrees the last EFLG stands.
+ * most two pairs.  Returns 1 when a pair agreed, 0 when none did: then
+ * nothing read can be trusted, and taking the last EFLG anyway is how a
+ * few garbled bytes used to put a healthy interface bus-off.
  */
 static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
 		      struct can_berr_counter *bec)
@@ -241,9 +342,12 @@ static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
 		if (err)
 			return err;
 		err = mcp2510_berr_counter(chip, bec);
-		if (err || mcp2510_error_state_plausible(*eflg, bec) ||
-		    ++tries == STATE_READ_TRIES)
+		if (err)
 			return err;
+		if (mcp2510_error_state_plausible(*eflg, bec))
+			return 1;
+		if (++tries == STATE_READ_TRIES)
+			return 0;
 		err = mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
 	}
 }
@@ -270,12 +374,19 @@ static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
 		err = state_read(chip, ovr, &eflg, &bec);
 	else
 		err = mcp2510_berr_counter(chip, &bec);
-	if (err)
+	if (err < 0)
 		return err;
-	if (state_due) {
+	if (state_due && err) {
 		mcp2510_error_state_update(chip, eflg, &bec);
 		/* an overflow since the first read: its ERRIF may be gone */
 		late = eflg & EFLG_RXOVR_ALL;
+	} else if (state_due) {
+		/*
+		 * Keep the state we had.  ERRIF is cleared, so a real change
+		 * would raise no flag again: have the next pass read EFLG.
+		 */
+		chip->irq.full_read_next = true;
+		bec = chip->bec;
 	}
 	mcp2510_error_overflow(chip, ovr | late, &bec);
 	if (f->intf & MCP2510_INT_MERR)
@@ -297,31 +408,32 @@ static int flags_count(u8 flags)
 /* One pass; returns the number of flags handled, 0 when none were set. */
 static int irq_pass(struct mcp2510_chip *chip)
 {
-	struct can_frame frames[MCP2510_RXB_COUNT];
 	struct irq_flags f;
-	int nframes, i, err;
+	int err;
 	u8 clear;
 
 	chip->counters.irq_loops++;
 	err = flags_read(chip, &f);
 	if (err)
 		return err;
-	nframes = rx_read(chip, f.intf, frames);
-	if (nframes < 0)
-		return nframes;
+	err = rx_take(chip, f.intf);
+	if (err)
+		return err;
 	err = handle_errors(chip, &f);
 	if (err)
 		return err;
-	clear = rx_clear_mask(chip, f.intf) | handle_tx(chip, &f) |
+	if (f.have_txreq)
+		mcp2510_tx_resolve(chip, f.status);
+	clear = handle_tx(chip, &f) |
 		(f.intf & (MCP2510_INT_MERR | MCP2510_INT_WAK));
 	if (clear) {
 		err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, clear, 0);
 		if (err)
 			return err;
 	}
-	for (i = 0; i < nframes; i++)
-		if (chip->events->rx)
-			chip->events->rx(chip->ctx, &frames[i]);
+	err = mcp2510_tx_kick(chip);
+	if (err)
+		return err;
 	return flags_count(f.intf);
 }
 

@@ -43,6 +43,16 @@ const struct mcp2510_variant *mcp2510_variant_get(enum mcp2510_model model);
 /* The chip's bit-timing limits, in CAN clock (oscillator / 2) quanta. */
 extern const struct can_bittiming_const mcp2510_bittiming_const;
 
+/* One chip-select-low period of a message (see mcp2510_ops.xfer_msg). */
+struct mcp2510_xfer {
+	const u8 *tx;
+	u8 *rx;				/* may be NULL */
+	unsigned int len;
+};
+
+/* Most chip-select periods the core puts in one message. */
+#define MCP2510_XFER_MSG_MAX	3
+
 struct mcp2510_ops {
 	/*
 	 * One chip-select-low period: clock out @len bytes of @tx while
@@ -51,6 +61,17 @@ struct mcp2510_ops {
 	 * copies.  Returns 0 or a negative errno (the core reports -EIO).
 	 */
 	int (*xfer)(void *ctx, const u8 *tx, u8 *rx, unsigned int len);
+	/*
+	 * Optional: @n (at most MCP2510_XFER_MSG_MAX) chip-select-low
+	 * periods in one go, chip select rising between them only for as
+	 * long as the chip needs, with no other traffic and no sleep in
+	 * between, so that the chip sees them microseconds apart (one
+	 * spi_message).  Stops at the first period that fails.  The receive
+	 * order is exact only with it: without it the core calls xfer for
+	 * each period and a delay between them can let two frames in.
+	 */
+	int (*xfer_msg)(void *ctx, const struct mcp2510_xfer *x,
+			unsigned int n);
 	/* Wait at least @us microseconds; may sleep. */
 	void (*delay_us)(void *ctx, unsigned int us);
 };
@@ -156,14 +177,17 @@ struct mcp2510_chip {
 		u8 busy;			/* bit n: slot n holds a frame */
 		u8 done;			/* sent, tx_done not yet raised */
 		u8 prio_unknown;		/* TXBnCTRL.TXP unsure after -EIO */
+		u8 staged;			/* loaded, waiting for its RTS */
+		u8 unsure;			/* RTS failed, TXREQ unknown */
 		u32 next_seq;
-		u32 prio_raises;		/* TXBnCTRL.TXP raises (BIT MODIFY) */
+		u32 stages;			/* frames that had to be staged */
 	} tx;
 
 	/* Interrupt loop state (see irq.c). */
 	struct {
 		u8 passes_to_full_read;	/* countdown to reading CANINTF/EFLG */
 		bool full_read_next;	/* both RX buffers were full */
+		bool rx1_first;		/* RXB1 holds the older frame */
 	} irq;
 };
 
@@ -255,7 +279,9 @@ unsigned int mcp2510_tx_free(const struct mcp2510_chip *chip);
 /*
  * Load @cf into a free buffer and request it; returns the slot used.
  * -EBUSY when no buffer is free, -ENETDOWN when not started, -EIO when the
- * transport failed (the slot stays free and the frame was not sent).
+ * transport failed and the frame was not sent (a buffer whose request
+ * may have reached the chip is kept out of use until READ STATUS shows
+ * its TXREQ clear).
  */
 int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
 
@@ -268,9 +294,10 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
  * one pass is enough (the line fires again while anything is pending);
  * with chip->irq_edge set it loops until nothing is pending.  The loop is
  * bounded: a chip that never stops asserting returns -EAGAIN and counts an
- * irq storm.  Returns the number of flags handled.  Received frames are
- * delivered after their flags are cleared, so a failed clear (-EIO) makes
- * the next call read them again rather than deliver them twice.
+ * irq storm.  Returns the number of flags handled.  A received frame is
+ * delivered as soon as its buffer is released, oldest first; after a
+ * transfer error (-EIO) the chip is asked whether the release happened,
+ * so the frame is delivered either now or by a later call, not twice.
  */
 int mcp2510_irq_handle(struct mcp2510_chip *chip);
 
@@ -279,7 +306,8 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip);
  * Read back the mode, CNF1-3 and CANINTE (two transfers) and compare them
  * with what mcp2510_start() programmed: 0 when they agree (or the chip is
  * not started), -EBADMSG when the chip reset itself or reads garbage.
- * When they agree and frames are pending, one READ STATUS more: a busy
+ * When they agree and frames are pending (or staged, or a buffer's RTS
+ * had an unknown outcome), one READ STATUS more: a busy
  * buffer with neither TXREQ nor TXnIF set is given up (tx_aborted), so
  * a frame no interrupt will ever report cannot hold the queue.
  */

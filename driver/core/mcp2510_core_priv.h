@@ -14,8 +14,9 @@
 /* spi.c */
 int mcp2510_xfer(struct mcp2510_chip *chip, const u8 *tx, u8 *rx,
 		 unsigned int len);
-/* Frame registers of RX buffer @n into @regs (MCP2510_FRAME_REGS bytes). */
-int mcp2510_rxb_read(struct mcp2510_chip *chip, unsigned int n, u8 *regs);
+/* @n chip-select periods in one message (ops->xfer_msg), or one by one. */
+int mcp2510_xfer_msg(struct mcp2510_chip *chip, const struct mcp2510_xfer *x,
+		     unsigned int n);
 
 /* bringup.c */
 void mcp2510_delay_us(struct mcp2510_chip *chip, unsigned int us);
@@ -28,6 +29,10 @@ u8 mcp2510_tx_pending(const struct mcp2510_chip *chip);
 void mcp2510_tx_complete(struct mcp2510_chip *chip, u8 slots);
 /* Slots the chip dropped without sending (TXREQ gone, no TXnIF). */
 void mcp2510_tx_lost(struct mcp2510_chip *chip, u8 slots);
+/* READ STATUS @status: settle the slots whose RTS had an unknown outcome. */
+void mcp2510_tx_resolve(struct mcp2510_chip *chip, u8 status);
+/* Request the staged frames once no older frame is pending. */
+int mcp2510_tx_kick(struct mcp2510_chip *chip);
 /* Drop every queued frame, raising tx_aborted in queue order. */
 void mcp2510_tx_abort_all(struct mcp2510_chip *chip);
 

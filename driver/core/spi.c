@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * SPI instruction framing, register access and the table of chip variants.
- * Each function here is exactly one chip-select-low period.
+ * Each function here is exactly one chip-select-low period, except
+ * mcp2510_xfer_msg(), which puts several in one message.
  */
 #include "mcp2510_core_priv.h"
 
@@ -47,6 +48,21 @@ int mcp2510_xfer(struct mcp2510_chip *chip, const u8 *tx, u8 *rx,
 		 unsigned int len)
 {
 	return chip->ops->xfer(chip->ctx, tx, rx, len) ? -EIO : 0;
+}
+
+int mcp2510_xfer_msg(struct mcp2510_chip *chip, const struct mcp2510_xfer *x,
+		     unsigned int n)
+{
+	unsigned int i;
+
+	if (!n || n > MCP2510_XFER_MSG_MAX)
+		return -EINVAL;
+	if (chip->ops->xfer_msg)
+		return chip->ops->xfer_msg(chip->ctx, x, n) ? -EIO : 0;
+	for (i = 0; i < n; i++)
+		if (chip->ops->xfer(chip->ctx, x[i].tx, x[i].rx, x[i].len))
+			return -EIO;
+	return 0;
 }
 
 int mcp2510_reg_read(struct mcp2510_chip *chip, u8 addr, u8 *buf,
@@ -116,32 +132,6 @@ int mcp2510_rts(struct mcp2510_chip *chip, u8 slots)
 	if (!slots || slots & ~MCP2510_RTS_ALL)
 		return -EINVAL;
 	return mcp2510_xfer(chip, &tx, NULL, 1);
-}
-
-/*
- * The MCP2515's READ RX BUFFER saves the address byte and clears RXnIF
- * when chip select rises, so the caller must not clear it again; on the
- * MCP2510 a plain sequential READ does the same job.
- */
-int mcp2510_rxb_read(struct mcp2510_chip *chip, unsigned int n, u8 *regs)
-{
-	u8 tx[2 + MCP2510_FRAME_REGS] = { 0 };
-	u8 rx[2 + MCP2510_FRAME_REGS];
-	unsigned int hdr;
-	int err;
-
-	if (chip->variant->has_buffer_instrs) {
-		tx[0] = MCP2515_INSTR_READ_RX_BUFFER | MCP2515_READ_RXB_SIDH(n);
-		hdr = 1;
-	} else {
-		tx[0] = MCP2510_INSTR_READ;
-		tx[1] = MCP2510_REG_RXBSIDH(n);
-		hdr = 2;
-	}
-	err = mcp2510_xfer(chip, tx, rx, hdr + MCP2510_FRAME_REGS);
-	if (!err)
-		memcpy(regs, rx + hdr, MCP2510_FRAME_REGS);
-	return err;
 }
 
 int mcp2510_regs_dump(struct mcp2510_chip *chip, u8 *buf)

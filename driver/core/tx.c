@@ -14,14 +14,36 @@
  * frame takes the highest such key any free buffer can have, so the keys
  * walk down by about one per frame while all three buffers stay busy.
  *
- * When no free buffer has a key left below the pending ones, waiting for
- * the bus to drain would leave buffers idle.  Instead the pending frames
- * are raised to the top keys, oldest first and each just below the one
- * before it, with a BIT MODIFY of their TXP.  Every raise only increases a
- * key and the oldest frame moves first, so at every instant in between the
- * keys still fall in queue order, whichever frame the chip picks next.
- * With twelve keys this costs two BIT MODIFYs about every nine frames of a
- * continuous stream; an idle chip's first frame needs none.
+ * When no free buffer has a key left below the pending ones, the new
+ * frame is staged: loaded with the top key its buffer can have below the
+ * frames staged before it, but not requested.  When the last pending
+ * frame is gone, one RTS requests every staged frame at once and the keys
+ * start again from the top.  This leaves the bus idle once about every
+ * nine frames of a continuous stream, for as long as the interrupt takes.
+ *
+ * Why not raise the TXP of the pending frames instead (fewer idle bus
+ * times)?  The data sheets want TXREQ clear before a transmit buffer is
+ * written (DS21801 section 3, AN739 "The Transmit Buffers": a buffer
+ * "cannot be modified" while pending or sending), and they count TXBnCTRL
+ * as the first byte of the 14-byte buffer.  Yet a pending frame is
+ * aborted by clearing TXREQ in that same register (register 3-1), so the
+ * rule cannot cover every TXBnCTRL write, and nothing says whether a TXP
+ * write to a pending buffer takes effect, is ignored, or disturbs the
+ * arbitration in progress.  The driver relies only on what is certain:
+ * it writes a buffer, TXBnCTRL included, only while its TXREQ is clear,
+ * and clears TXREQ (BIT MODIFY of that bit alone) only to abort.  The
+ * chip model ignores TXP writes to a pending buffer by default, takes
+ * them with sim_chip_faults.txp_writable_while_pending, and counts
+ * them either way (sim_counters.tx_pending_writes).
+ *
+ * An RTS whose transfer fails may still have reached the chip, which
+ * then sends the frame.  READ STATUS tells: TXREQ or TXnIF set means the
+ * request was latched and the frame counts as sent; both clear, that it
+ * was not.  When even that read fails the buffer is "unsure" and is not
+ * used again until a READ STATUS shows its TXREQ clear; loading a frame
+ * into it could otherwise write a pending buffer (and with LOAD TX
+ * BUFFER, have the old frame sent in place of the new one).  A failed
+ * load cannot request anything: it writes TXREQ as 0 or not at all.
  *
  * Completions are reported in queue order too: a buffer that finished
  * before an older one (possible only if the older one was lost) waits in
@@ -61,7 +83,13 @@ static unsigned int queue_order(const struct mcp2510_chip *chip, u8 mask,
 
 u8 mcp2510_tx_pending(const struct mcp2510_chip *chip)
 {
-	return chip->tx.busy & ~chip->tx.done;
+	return chip->tx.busy & ~chip->tx.done & ~chip->tx.staged;
+}
+
+/* Slots that can take a new frame. */
+static u8 tx_unused(const struct mcp2510_chip *chip)
+{
+	return SLOTS_ALL & ~chip->tx.busy & ~chip->tx.unsure;
 }
 
 static unsigned int tx_key(const struct mcp2510_chip *chip, unsigned int slot)
@@ -80,29 +108,28 @@ static int txp_below(unsigned int ceiling, unsigned int slot)
 	return txp > TXP_MAX ? TXP_MAX : txp;
 }
 
-static unsigned int pending_floor(const struct mcp2510_chip *chip)
+/* The lowest key of the slots in @mask, KEY_CEILING when none. */
+static unsigned int key_floor(const struct mcp2510_chip *chip, u8 mask)
 {
 	unsigned int floor = KEY_CEILING, slot;
 
 	for (slot = 0; slot < MCP2510_TXB_COUNT; slot++)
-		if (mcp2510_tx_pending(chip) & BIT(slot) &&
-		    tx_key(chip, slot) < floor)
+		if (mask & BIT(slot) && tx_key(chip, slot) < floor)
 			floor = tx_key(chip, slot);
 	return floor;
 }
 
-/* The free slot and TXP with the highest key below every pending frame. */
-static bool tx_pick(const struct mcp2510_chip *chip, unsigned int *slot,
-		    u8 *txp)
+/* The unused slot and TXP with the highest key below @floor. */
+static bool tx_pick(const struct mcp2510_chip *chip, unsigned int floor,
+		    unsigned int *slot, u8 *txp)
 {
-	unsigned int floor = pending_floor(chip);
 	int best_key = -1;
 	unsigned int s;
 
 	for (s = 0; s < MCP2510_TXB_COUNT; s++) {
 		int p;
 
-		if (chip->tx.busy & BIT(s))
+		if (!(tx_unused(chip) & BIT(s)))
 			continue;
 		p = txp_below(floor, s);
 		if (p >= 0 && (int)KEY(p, s) > best_key) {
@@ -112,46 +139,6 @@ static bool tx_pick(const struct mcp2510_chip *chip, unsigned int *slot,
 		}
 	}
 	return best_key >= 0;
-}
-
-static int txp_write(struct mcp2510_chip *chip, unsigned int slot, u8 txp)
-{
-	int err;
-
-	err = mcp2510_reg_modify(chip, MCP2510_REG_TXBCTRL(slot),
-				 MCP2510_TXBCTRL_TXP_MASK, txp);
-	if (err) {
-		/* the chip may hold either value: rewrite it next time */
-		chip->tx.prio_unknown |= BIT(slot);
-		return err;
-	}
-	chip->tx.prio[slot] = txp;
-	chip->tx.prio_unknown &= ~BIT(slot);
-	chip->tx.prio_raises++;
-	return 0;
-}
-
-/* Lift the pending frames to the top keys, oldest first (see above). */
-static int tx_raise(struct mcp2510_chip *chip)
-{
-	u8 order[MCP2510_TXB_COUNT];
-	unsigned int n, i, ceiling = KEY_CEILING;
-	int err;
-
-	n = queue_order(chip, mcp2510_tx_pending(chip), order);
-	for (i = 0; i < n; i++) {
-		unsigned int slot = order[i];
-		u8 txp = txp_below(ceiling, slot);
-
-		if (txp != chip->tx.prio[slot] ||
-		    chip->tx.prio_unknown & BIT(slot)) {
-			err = txp_write(chip, slot, txp);
-			if (err)
-				return err;
-		}
-		ceiling = KEY(txp, slot);
-	}
-	return 0;
 }
 
 /*
@@ -198,6 +185,122 @@ unsigned int mcp2510_tx_free(const struct mcp2510_chip *chip)
 	return n;
 }
 
+/*
+ * What READ STATUS says of the unsure slots: a staged frame whose RTS was
+ * latched is pending now; a dropped frame's slot is free once its TXREQ
+ * is clear.
+ */
+void mcp2510_tx_resolve(struct mcp2510_chip *chip, u8 status)
+{
+	unsigned int n;
+
+	for (n = 0; n < MCP2510_TXB_COUNT; n++) {
+		bool txreq = status & MCP2510_STATUS_TXREQ(n);
+		bool latched = txreq || status & MCP2510_STATUS_TXIF(n);
+
+		if (!(chip->tx.unsure & BIT(n)))
+			continue;
+		if (chip->tx.busy & BIT(n)) {
+			if (latched)
+				chip->tx.staged &= ~BIT(n);
+			chip->tx.unsure &= ~BIT(n);
+		} else if (!txreq) {
+			chip->tx.unsure &= ~BIT(n);
+		}
+	}
+}
+
+static int tx_status_resolve(struct mcp2510_chip *chip)
+{
+	u8 status;
+	int err;
+
+	err = mcp2510_read_status(chip, &status);
+	if (!err)
+		mcp2510_tx_resolve(chip, status);
+	return err;
+}
+
+/*
+ * RTS for @slots; returns those whose request the chip latched, or -EIO
+ * when the RTS failed and READ STATUS could not tell (see the top).
+ */
+static int tx_request(struct mcp2510_chip *chip, u8 slots)
+{
+	u8 status, latched = 0;
+	unsigned int n;
+	int err;
+
+	if (!mcp2510_rts(chip, slots))
+		return slots;
+	err = mcp2510_read_status(chip, &status);
+	if (err)
+		return err;
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (status & (MCP2510_STATUS_TXREQ(n) | MCP2510_STATUS_TXIF(n)))
+			latched |= BIT(n);
+	return latched & slots;
+}
+
+/*
+ * Request the staged frames once nothing older is pending: they hold the
+ * top keys, in queue order, and go with one RTS.
+ */
+int mcp2510_tx_kick(struct mcp2510_chip *chip)
+{
+	int ret;
+
+	if (!chip->tx.staged || mcp2510_tx_pending(chip))
+		return 0;
+	if (chip->tx.unsure & chip->tx.busy) {
+		/* an RTS of theirs failed: never request a frame twice */
+		ret = tx_status_resolve(chip);
+		if (ret)
+			return ret;
+		if (!chip->tx.staged || mcp2510_tx_pending(chip))
+			return 0;
+	}
+	ret = tx_request(chip, chip->tx.staged);
+	if (ret < 0) {
+		chip->tx.unsure |= chip->tx.staged;
+		return ret;
+	}
+	chip->tx.staged &= ~ret;
+	return 0;
+}
+
+/* Load @cf into a slot with a key below every pending frame, request it. */
+static int tx_send(struct mcp2510_chip *chip, unsigned int slot, u8 txp,
+		   const u8 *regs, unsigned int nregs)
+{
+	int ret;
+
+	ret = tx_load(chip, slot, txp, regs, nregs);
+	if (ret)
+		return ret;
+	ret = tx_request(chip, BIT(slot));
+	if (ret < 0)
+		chip->tx.unsure |= BIT(slot);
+	return ret == (int)BIT(slot) ? 0 : -EIO;
+}
+
+/* Load @cf below the staged frames, to be requested by mcp2510_tx_kick(). */
+static int tx_stage(struct mcp2510_chip *chip, const u8 *regs,
+		    unsigned int nregs, unsigned int *slot)
+{
+	u8 txp = 0;
+	int ret;
+
+	if (!tx_pick(chip, key_floor(chip, chip->tx.staged), slot, &txp))
+		return -EBUSY;	/* unreachable: 12 keys for 3 slots */
+	ret = tx_load(chip, *slot, txp, regs, nregs);
+	if (ret)
+		return ret;
+	chip->tx.staged |= BIT(*slot);
+	chip->tx.stages++;
+	return 0;
+}
+
 int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf)
 {
 	u8 regs[MCP2510_FRAME_REGS];
@@ -212,23 +315,31 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf)
 	nregs = mcp2510_frame_encode(cf, regs);
 	if (nregs < 0)
 		return nregs;
-
-	if (!tx_pick(chip, &slot, &txp)) {
-		err = tx_raise(chip);
+	if (!tx_unused(chip)) {
+		err = tx_status_resolve(chip);
 		if (err)
 			return err;
-		if (!tx_pick(chip, &slot, &txp))
-			return -EBUSY;	/* unreachable: a raise frees keys */
+		if (!tx_unused(chip))
+			return -EBUSY;
 	}
-	err = tx_load(chip, slot, txp, regs, nregs);
-	if (err)
-		return err;
-	err = mcp2510_rts(chip, BIT(slot));
+
+	if (!chip->tx.staged &&
+	    tx_pick(chip, key_floor(chip, mcp2510_tx_pending(chip)), &slot,
+		    &txp))
+		err = tx_send(chip, slot, txp, regs, nregs);
+	else
+		err = tx_stage(chip, regs, nregs, &slot);
 	if (err)
 		return err;
 
 	chip->tx.busy |= BIT(slot);
 	chip->tx.seq[slot] = chip->tx.next_seq++;
+	/*
+	 * Staged with nothing pending (an earlier kick failed): go now.  The
+	 * frame is the core's either way; a failed kick is retried by the
+	 * next interrupt or health check.
+	 */
+	mcp2510_tx_kick(chip);
 	return slot;
 }
 
@@ -280,6 +391,8 @@ void mcp2510_tx_abort_all(struct mcp2510_chip *chip)
 
 		chip->tx.busy &= ~BIT(slot);
 		chip->tx.done &= ~BIT(slot);
+		chip->tx.staged &= ~BIT(slot);
+		chip->tx.unsure &= ~BIT(slot);
 		if (sent && chip->events->tx_done)
 			chip->events->tx_done(chip->ctx, slot);
 		else if (!sent && chip->events->tx_aborted)

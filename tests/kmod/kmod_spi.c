@@ -13,7 +13,8 @@
  * message costs what the model's SPI time arithmetic says: it waits for
  * the bus, pays its host overhead, and each period ends, and the chip
  * acts, when CS rises at the modelled time; the controller sleeps in real
- * time, scaled by time_scale, until then.  Off, a period happens at once.
+ * time, scaled by time_scale, until then.  Off, all periods of a message
+ * happen at one bus instant (see run_message()).
  */
 #include <linux/device.h>
 #include <linux/irq.h>
@@ -105,6 +106,7 @@ static void wait_cs_rise(struct mcp2510_sim_chip *chip, u64 cs_rise)
  * Run the gathered bytes of transfers @first..@last as one CS-low period
  * and hand each transfer its share of what came back on MISO.  The first
  * period takes the message's place on the SPI bus, the last gives it up.
+ * Called and returns with the lock held.
  */
 static void end_period(struct msg_run *run, struct spi_transfer *first,
 		       struct spi_transfer *last, bool final)
@@ -114,7 +116,6 @@ static void end_period(struct msg_run *run, struct spi_transfer *first,
 	struct mcp2510_sim_period *p = &run->period;
 	struct spi_transfer *xfer = first;
 
-	mcp2510_sim_lock(sim);
 	if (!run->begun) {
 		sim_spi_msg_begin(&sim->spi, &run->time, sim_bus_now(&sim->bus));
 		run->begun = true;
@@ -123,18 +124,25 @@ static void end_period(struct msg_run *run, struct spi_transfer *first,
 	sim_chip_spi(&chip->model, p->tx, p->rx, p->len);
 	if (final)
 		sim_spi_msg_end(&sim->spi, &run->time, &chip->model);
-	mcp2510_sim_unlock(sim);
 
 	list_for_each_entry_from(xfer, &run->msg->transfers, transfer_list) {
 		mcp2510_sim_period_give(p, xfer->rx_buf, xfer->len);
-		run->msg->actual_length += xfer->len;
-		spi_transfer_delay_exec(xfer);
 		if (xfer == last)
 			break;
 	}
 	mcp2510_sim_period_next(p);
 }
 
+/*
+ * The lock is held over the whole message, so bus time only moves between
+ * its periods when SPI time makes the controller sleep.  On real hardware
+ * the periods of a message follow each other within microseconds; here
+ * the guest may not run for milliseconds between two of them, and letting
+ * the bus catch up with the clock in between would deliver frames there
+ * that no real bus could (the driver's receive order relies on two frames
+ * never arriving between two periods of one message).  Transfer delays are
+ * honoured after the message.
+ */
 static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
 		       const struct sim_spi_timing *timing)
 {
@@ -143,10 +151,11 @@ static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
 	struct msg_run run = { .chip = chip, .msg = msg };
 	struct spi_transfer *xfer, *first = NULL;
 	struct mcp2510_sim_xfer x;
-	int ret;
+	int ret = 0;
 
 	mcp2510_sim_period_init(&run.period, sim->spi_tx, sim->spi_rx,
 				MCP2510_SIM_SPI_BUF_LEN);
+	mcp2510_sim_lock(sim);
 	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
 		x.tx = xfer->tx_buf;
 		x.len = xfer->len;
@@ -156,13 +165,21 @@ static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
 		ret = mcp2510_sim_period_add(&run.period, &x, timing,
 					     chip_max_hz);
 		if (ret < 0)
-			return ret;
+			break;
 		if (!first)
 			first = xfer;
 		if (ret) {
 			end_period(&run, first, xfer, x.last);
 			first = NULL;
 		}
+	}
+	mcp2510_sim_unlock(sim);
+	if (ret < 0)
+		return ret;
+
+	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
+		msg->actual_length += xfer->len;
+		spi_transfer_delay_exec(xfer);
 	}
 	return 0;
 }

@@ -98,6 +98,7 @@ struct sim_counters {
 	u64 arbitration_lost;
 	u64 bus_off;		/* entries into bus-off */
 	u64 spi_busy_ns;	/* SPI bus time taken by this chip's messages (SPI time on) */
+	u64 tx_pending_writes;	/* writes to a TX buffer with TXREQ set, other than of TXREQ alone */
 };
 
 /* What a corrupted transfer returns on MISO. */
@@ -124,6 +125,16 @@ struct sim_chip_faults {
 	bool int_stuck;		/* INT held low whatever CANINTE and CANINTF say */
 	u64 wake_delay_ns;	/* "slow wake": extra time from wake-up cause to listen-only */
 	u64 mode_delay_ns;	/* "slow mode change": REQOP write to CANSTAT.OPMOD */
+	/*
+	 * Not a fault but a reading of the data sheets, which want TXREQ
+	 * clear before a transmit buffer is written and count TXBnCTRL as
+	 * part of the buffer, yet abort by clearing TXREQ.  false (the
+	 * default, the harsher reading): while TXREQ is set only TXREQ
+	 * itself can be written, a TXP write changes nothing.  true: TXP
+	 * stays writable.  Either way SIDH..D7 are locked, and every
+	 * attempt counts in sim_counters.tx_pending_writes.
+	 */
+	bool txp_writable_while_pending;
 };
 
 /*

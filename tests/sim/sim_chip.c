@@ -165,10 +165,15 @@ static u8 sim_reg_write_mask(const struct sim_chip *chip, unsigned int addr)
 	if (addr < MCP2510_REG_RXB(0)) {
 		unsigned int n = (addr - MCP2510_REG_TXB(0)) >> 4;
 
+		bool pending = chip->regs[MCP2510_REG_TXBCTRL(n)] &
+			       MCP2510_TXBCTRL_TXREQ;
+
+		/* the reading of TXBnCTRL: sim_chip_faults */
 		if (off == MCP2510_BUF_CTRL)
-			return SIM_TXBCTRL_WMASK;
+			return pending && !chip->faults.txp_writable_while_pending ?
+			       MCP2510_TXBCTRL_TXREQ : SIM_TXBCTRL_WMASK;
 		/* AN739: a buffer cannot be modified while TXREQ is set */
-		if (chip->regs[MCP2510_REG_TXBCTRL(n)] & MCP2510_TXBCTRL_TXREQ)
+		if (pending)
 			return 0;
 		if (off == MCP2510_BUF_SIDL)
 			return SIM_TXB_SIDL_MASK;
@@ -902,12 +907,34 @@ static void sim_write_txbctrl(struct sim_chip *chip, unsigned int n, u8 old)
 	}
 }
 
+/*
+ * A write into a transmit buffer whose TXREQ is set that touches more
+ * than TXREQ (clearing TXREQ is the documented abort).
+ */
+static bool sim_tx_pending_write(const struct sim_chip *chip,
+				 unsigned int addr, u8 mask)
+{
+	unsigned int n;
+
+	if (addr < MCP2510_REG_TXB(0) || addr >= MCP2510_REG_RXB(0) ||
+	    (addr & 0x0f) >= MCP2510_BUF_LEN)
+		return false;
+	n = (addr - MCP2510_REG_TXB(0)) >> 4;
+	if (!(chip->regs[MCP2510_REG_TXBCTRL(n)] & MCP2510_TXBCTRL_TXREQ))
+		return false;
+	if ((addr & 0x0f) == MCP2510_BUF_CTRL)
+		return mask & MCP2510_TXBCTRL_TXP_MASK;
+	return true;
+}
+
 static void sim_reg_write(struct sim_chip *chip, unsigned int addr, u8 val,
 			  u8 mask)
 {
 	u8 wmask, old, *reg;
 
 	addr &= SIM_ADDR_MASK;
+	if (sim_tx_pending_write(chip, addr, mask))
+		chip->counters.tx_pending_writes++;
 	wmask = sim_reg_write_mask(chip, addr) & mask;
 	if ((addr & 0x0f) == SIM_ROW_CANCTRL)
 		addr = MCP2510_REG_CANCTRL;

@@ -29,32 +29,27 @@ void ch_corrupt_after(struct ch_node *node, u64 after,
 }
 
 /*
- * One CS-low period reaching the chip.  With SPI time on, bus time runs
- * to the moment CS rises and the chip acts then.
+ * One CS-low period of message @m reaching the chip.  With SPI time on,
+ * bus time runs to the moment CS rises and the chip acts then.
  */
-static void ch_chip_spi(struct ch_node *node, const u8 *tx, u8 *rx,
-			unsigned int len)
+static void ch_chip_spi(struct ch_node *node, struct sim_spi_msg *m,
+			const u8 *tx, u8 *rx, unsigned int len)
 {
 	struct sim_spi_bus *sb = &node->rig->spi;
-	struct sim_spi_msg m;
 	u64 clock_ns;
 
-	if (!sb->timing.enabled) {
-		sim_chip_spi(&node->sim, tx, rx, len);
-		return;
+	if (sb->timing.enabled) {
+		clock_ns = sim_spi_clock_ns(&sb->timing, len, node->spi_hz,
+					    sim_chip_sck_max_hz(&node->sim));
+		sim_bus_advance_to(&node->rig->bus,
+				   sim_spi_msg_period(sb, m, clock_ns));
 	}
-	clock_ns = sim_spi_clock_ns(&sb->timing, len, node->spi_hz,
-				    sim_chip_sck_max_hz(&node->sim));
-	sim_spi_msg_begin(sb, &m, sim_bus_now(&node->rig->bus));
-	sim_bus_advance_to(&node->rig->bus, sim_spi_msg_period(sb, &m, clock_ns));
 	sim_chip_spi(&node->sim, tx, rx, len);
-	sim_spi_msg_end(sb, &m, &node->sim);
 }
 
-static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
+static int ch_period(struct ch_node *node, struct sim_spi_msg *m,
+		     const u8 *tx, u8 *rx, unsigned int len)
 {
-	struct ch_node *node = ctx;
-
 	ch_corrupt_start(node);
 	node->xfer_count++;
 	if (node->miso_stuck >= 0) {
@@ -65,13 +60,43 @@ static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 	if (node->fail_at && node->xfer_count == node->fail_at) {
 		node->failed_instr = tx[0];
 		if (node->fail_reaches_chip)
-			ch_chip_spi(node, tx, rx, len);
+			ch_chip_spi(node, m, tx, rx, len);
 		return -EREMOTEIO;
 	}
-	ch_chip_spi(node, tx, rx, len);
+	ch_chip_spi(node, m, tx, rx, len);
 	if (node->after_xfer)
 		node->after_xfer(node);
 	return 0;
+}
+
+/*
+ * A message takes its place on the SPI bus once, pays the host overhead
+ * once, then each of its periods; after_xfer learns after each period how
+ * many are still to come.
+ */
+static int ch_xfer_msg(void *ctx, const struct mcp2510_xfer *x, unsigned int n)
+{
+	struct ch_node *node = ctx;
+	struct sim_spi_msg m;
+	unsigned int i;
+	int err = 0;
+
+	sim_spi_msg_begin(&node->rig->spi, &m, sim_bus_now(&node->rig->bus));
+	for (i = 0; i < n && !err; i++) {
+		node->msg_left = n - 1 - i;
+		err = ch_period(node, &m, x[i].tx, x[i].rx, x[i].len);
+	}
+	sim_spi_msg_end(&node->rig->spi, &m, &node->sim);
+	node->msg_left = 0;
+	node->messages++;
+	return err;
+}
+
+static int ch_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
+{
+	const struct mcp2510_xfer x = { .tx = tx, .rx = rx, .len = len };
+
+	return ch_xfer_msg(ctx, &x, 1);
 }
 
 static void ch_delay_us(void *ctx, unsigned int us)
@@ -83,6 +108,7 @@ static void ch_delay_us(void *ctx, unsigned int us)
 
 static const struct mcp2510_ops ch_ops = {
 	.xfer = ch_xfer,
+	.xfer_msg = ch_xfer_msg,
 	.delay_us = ch_delay_us,
 };
 

@@ -47,6 +47,13 @@ struct ch_node {
 	u8 failed_instr;	/* first byte of the transfer that failed */
 	/* called after every transfer that reached the chip */
 	void (*after_xfer)(struct ch_node *node);
+	/*
+	 * Inside a message of several periods (mcp2510_ops.xfer_msg), the
+	 * periods still to come after the current one: after_xfer sees a
+	 * non-zero value between two periods of one message.
+	 */
+	unsigned int msg_left;
+	u64 messages;		/* SPI messages: xfer_msg calls, xfer as one */
 	/* a broken board: MISO always reads this (-1: a working line) */
 	int miso_stuck;
 	/* a glitch: corrupt_periods periods once xfer_count is corrupt_after */

@@ -383,6 +383,47 @@ static void test_corrupted_reads_keep_the_state(void **state)
 	}
 }
 
+static void set_errif(struct ch_node *node)
+{
+	const u8 tx[4] = { MCP2510_INSTR_BIT_MODIFY, MCP2510_REG_CANINTF,
+			   MCP2510_INT_ERR, MCP2510_INT_ERR };
+
+	sim_chip_spi(&node->sim, tx, NULL, sizeof(tx));
+}
+
+/*
+ * Every state read of a pass disagrees with its TEC/REC: MISO flips bits
+ * 0xa5 for all three pairs, so EFLG reads TXBO (with TXWAR and EWARN) and
+ * both counters read 165.  No pair is believable, so the state the chip
+ * had stays; the last EFLG read must not take the interface bus-off.
+ * The pass: READ STATUS (shows nothing), CANINTF/EFLG, the ERRIF clear,
+ * then EFLG and TEC/REC three times.
+ */
+static void test_disagreeing_reads_keep_the_state(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct ch_node *node = &rig->node[0];
+
+	(void)state;
+	assert_int_equal(ch_start(node, BITRATE, 0), 0);
+	set_errif(node);
+	assert_true(ch_int_asserted(node));
+	sim_chip_faults(&node->sim)->spi_corrupt_xor = 0xa5;
+	ch_corrupt_after(node, 3, SIM_CORRUPT_FLIP, 6);
+	assert_true(mcp2510_irq_handle(&node->core) >= 0);
+	assert_int_equal(sim_chip_faults(&node->sim)->spi_corrupt, 0);
+	assert_int_equal(node->ev.state_count, 0);
+	assert_int_equal(node->core.counters.bus_offs, 0);
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_ACTIVE);
+	/* the next pass reads the state again, and it is right */
+	set_errif(node);
+	ch_service(node, 4, NULL);
+	assert_int_equal(node->ev.state_count, 0);
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_ACTIVE);
+	assert_false(ch_int_asserted(node));
+	ch_rig_free(rig);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -396,6 +437,7 @@ int main(void)
 		cmocka_unit_test(test_one_shot_failure_while_warning),
 		cmocka_unit_test(test_state_change_during_the_pass),
 		cmocka_unit_test(test_corrupted_reads_keep_the_state),
+		cmocka_unit_test(test_disagreeing_reads_keep_the_state),
 	};
 
 	return cmocka_run_group_tests_name("core_error", tests, NULL, NULL);

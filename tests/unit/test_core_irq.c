@@ -104,18 +104,24 @@ static void rx_cost(enum mcp2510_model model, u64 max_bytes_x100,
 	ch_rig_free(rig);
 }
 
-/* READ STATUS 2 + READ RXB 15 + BIT MODIFY 4, CANINTF now and then */
+/*
+ * READ STATUS 2 + READ RXB 15 + BIT MODIFY 4 + READ STATUS 2 (the last
+ * two in one message: the order check), CANINTF now and then
+ */
 static void test_rx_cost_mcp2510(void **state)
 {
 	(void)state;
-	rx_cost(MCP2510_MODEL_MCP2510, 2200, 300);
+	rx_cost(MCP2510_MODEL_MCP2510, 2400, 400);
 }
 
-/* READ STATUS 2 + READ RX BUFFER 14 (clears RXnIF itself) */
+/*
+ * READ STATUS 2 + READ RX BUFFER 14 (clears RXnIF itself) + READ STATUS
+ * 2 in the same message
+ */
 static void test_rx_cost_mcp2515(void **state)
 {
 	(void)state;
-	rx_cost(MCP2510_MODEL_MCP2515, 1650, 200);
+	rx_cost(MCP2510_MODEL_MCP2515, 1850, 300);
 }
 
 static void test_both_buffers_oldest_first(void **state)
@@ -290,36 +296,154 @@ static void test_storm_is_bounded(void **state)
 	ch_rig_free(rig);
 }
 
-/* Fail each transfer of the pass in turn: the frame comes exactly once. */
-static void test_transport_error_keeps_the_frame(void **state)
+/*
+ * Fail each transfer of the pass in turn, once as a transfer that never
+ * reached the chip and once as one that did (only the host saw the
+ * error): each of two frames comes exactly once, in order.  A READ RX
+ * BUFFER that reached the chip has released its buffer, and so has an
+ * MCP2510 BIT MODIFY of RXnIF.
+ */
+static void test_transport_error_neither_loses_nor_duplicates(void **state)
 {
 	static const enum mcp2510_model models[] = {
 		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
 	};
-	unsigned int i, fail;
+	unsigned int i, fail, reaches, bad = 0;
 
 	(void)state;
 	for (i = 0; i < ARRAY_SIZE(models); i++) {
-		unsigned int transfers = models[i] == MCP2510_MODEL_MCP2510 ?
-					 3 : 2;
+		for (reaches = 0; reaches < 2; reaches++) {
+			for (fail = 1; fail <= 8; fail++) {
+				struct ch_rig *rig = rx_rig(models[i], true);
+				struct ch_node *node = &rig->node[0];
 
-		for (fail = 1; fail <= transfers; fail++) {
-			struct ch_rig *rig = rx_rig(models[i], true);
-			struct ch_node *node = &rig->node[0];
-
-			arrive_unserviced(rig, 0x500, 1);
-			node->xfer_count = 0;
-			node->fail_at = fail;
-			assert_int_equal(mcp2510_irq_handle(&node->core), -EIO);
-			assert_int_equal(node->ev.rx_count, 0);
-			node->fail_at = 0;
-			ch_service(node, 4, NULL);
-			assert_int_equal(node->ev.rx_count, 1);
-			assert_int_equal(node->ev.rx[0].can_id, 0x500);
-			assert_false(ch_int_asserted(node));
-			ch_rig_free(rig);
+				arrive_unserviced(rig, 0x500, 2);
+				node->xfer_count = 0;
+				node->fail_at = fail;
+				node->fail_reaches_chip = reaches;
+				mcp2510_irq_handle(&node->core);
+				node->fail_at = 0;
+				ch_service(node, 8, NULL);
+				if (node->ev.rx_count != 2 ||
+				    node->ev.rx[0].can_id != 0x500 ||
+				    node->ev.rx[1].can_id != 0x501) {
+					print_message("%s, transfer %u %s: %u frames\n",
+						      node->core.variant->name,
+						      fail,
+						      reaches ? "reached the chip" :
+								"lost",
+						      node->ev.rx_count);
+					bad++;
+				}
+				assert_false(ch_int_asserted(node));
+				ch_rig_free(rig);
+			}
 		}
 	}
+	assert_int_equal(bad, 0);
+}
+
+/* ---- the receive order, with frames arriving at the worst moments ---- */
+
+struct order_run {
+	u32 total, sent, received, inversions, rx1_first_seen;
+	u32 last_seq;
+	u32 rng;
+};
+
+static struct order_run *orun;
+
+static u32 order_rand(void)
+{
+	u32 x = orun->rng;
+
+	x ^= x << 13;
+	x ^= x >> 17;
+	x ^= x << 5;
+	orun->rng = x;
+	return x;
+}
+
+/* One frame from the phantom, complete now, with nobody servicing INT. */
+static void arrive_now(struct ch_node *node)
+{
+	struct sim_bus *bus = &node->rig->bus;
+	const struct sim_counters *c = sim_chip_counters(&node->sim);
+	u64 before = c->frames_rx + c->overflows;
+	struct can_frame cf = ch_frame(0x321, 8, orun->sent++);
+
+	assert_int_equal(sim_phantom_send(bus, &cf, 0), 0);
+	while (c->frames_rx + c->overflows == before)
+		sim_bus_advance_to(bus, sim_bus_next_event(bus));
+}
+
+/*
+ * After any transfer: up to two frames between messages (a host can be
+ * held up there for as long as it likes), at most one between the
+ * chip-select periods of one message (they are microseconds apart,
+ * frames at least 47 bit times).
+ */
+static void order_after_xfer(struct ch_node *node)
+{
+	unsigned int n = order_rand() % (node->msg_left ? 2 : 3);
+
+	if (node->core.irq.rx1_first)
+		orun->rx1_first_seen++;
+	while (n-- && orun->sent < orun->total)
+		arrive_now(node);
+}
+
+static void order_on_rx(struct ch_node *node, const struct can_frame *cf)
+{
+	u32 seq = cf->data[0] | cf->data[1] << 8 | cf->data[2] << 16 |
+		  (u32)cf->data[3] << 24;
+
+	(void)node;
+	if (orun->received && seq <= orun->last_seq)
+		orun->inversions++;
+	orun->last_seq = seq;
+	orun->received++;
+}
+
+static void rx_order(enum mcp2510_model model, u32 seed)
+{
+	struct order_run run = { .total = 3000, .rng = seed };
+	struct ch_rig *rig = rx_rig(model, true);
+	struct ch_node *node = &rig->node[0];
+	const struct sim_counters *c = sim_chip_counters(&node->sim);
+
+	orun = &run;
+	node->ev.on_rx = order_on_rx;
+	node->after_xfer = order_after_xfer;
+	while (run.sent < run.total) {
+		if (ch_int_asserted(node))
+			assert_true(mcp2510_irq_handle(&node->core) >= 0);
+		else
+			arrive_now(node);
+	}
+	node->after_xfer = NULL;
+	ch_service(node, 16, NULL);
+	assert_false(ch_int_asserted(node));
+	if (run.inversions)
+		fail_msg("%s: %u of %u frames came after a newer one",
+			 node->core.variant->name, run.inversions,
+			 run.received);
+	assert_int_equal(run.received + c->overflows, run.sent);
+	assert_true(c->overflows > 0);		/* both buffers were full ... */
+	assert_true(run.rx1_first_seen > 0);	/* ... with RXB1 the older */
+	ch_rig_free(rig);
+}
+
+static void test_rx_order_exact_mcp2510(void **state)
+{
+	(void)state;
+	rx_order(MCP2510_MODEL_MCP2510, 12345);
+}
+
+static void test_rx_order_exact_mcp2515(void **state)
+{
+	(void)state;
+	rx_order(MCP2510_MODEL_MCP2515, 54321);
 }
 
 static void test_mcp2515_rx_status(void **state)
@@ -349,7 +473,9 @@ int main(void)
 		cmocka_unit_test(test_level_triggered_one_pass),
 		cmocka_unit_test(test_edge_triggered_loops_until_clear),
 		cmocka_unit_test(test_storm_is_bounded),
-		cmocka_unit_test(test_transport_error_keeps_the_frame),
+		cmocka_unit_test(test_transport_error_neither_loses_nor_duplicates),
+		cmocka_unit_test(test_rx_order_exact_mcp2510),
+		cmocka_unit_test(test_rx_order_exact_mcp2515),
 		cmocka_unit_test(test_mcp2515_rx_status),
 	};
 

@@ -395,10 +395,19 @@ static void test_tx_buffer_locked(void **state)
 	simh_write(&r->chip, MCP2510_REG_TXBSIDH(0), 0x22);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBD(0, 0)), 0x11);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBSIDH(0)), 0);
-	/* TXP stays writable; clearing TXREQ aborts (ABTF) and unlocks */
+	assert_int_equal(sim_chip_counters(&r->chip)->tx_pending_writes, 2);
+	/* the harsher reading (default): TXP is locked too */
+	simh_bit_modify(&r->chip, MCP2510_REG_TXBCTRL(0), 0x03, 0x03);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBCTRL(0)), 0x08);
+	assert_int_equal(sim_chip_counters(&r->chip)->tx_pending_writes, 3);
+	/* the other reading: TXP stays writable */
+	sim_chip_faults(&r->chip)->txp_writable_while_pending = true;
 	simh_bit_modify(&r->chip, MCP2510_REG_TXBCTRL(0), 0x03, 0x03);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBCTRL(0)), 0x0b);
+	assert_int_equal(sim_chip_counters(&r->chip)->tx_pending_writes, 4);
+	/* clearing TXREQ aborts (ABTF) and unlocks, and is no violation */
 	simh_bit_modify(&r->chip, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
+	assert_int_equal(sim_chip_counters(&r->chip)->tx_pending_writes, 4);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBCTRL(0)),
 			 MCP2510_TXBCTRL_ABTF | 0x03);
 	simh_write(&r->chip, MCP2510_REG_TXBD(0, 0), 0x22);

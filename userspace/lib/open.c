@@ -54,6 +54,32 @@ static int ops_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
 	return t->ops->xfer(t, tx, rx, len);
 }
 
+static int ops_xfer_msg(void *ctx, const struct mcp2510_xfer *x,
+			unsigned int n)
+{
+	struct mcp2510_transport *t = ((struct mcp2510 *)ctx)->transport;
+	struct mcp2510_transport_xfer tx[MCP2510_XFER_MSG_MAX];
+	unsigned int i;
+	int err;
+
+	if (n > MCP2510_XFER_MSG_MAX)
+		return -EINVAL;
+	if (!t->ops->xfer_msg) {
+		for (i = 0; i < n; i++) {
+			err = t->ops->xfer(t, x[i].tx, x[i].rx, x[i].len);
+			if (err)
+				return err;
+		}
+		return 0;
+	}
+	for (i = 0; i < n; i++) {
+		tx[i].tx = x[i].tx;
+		tx[i].rx = x[i].rx;
+		tx[i].len = x[i].len;
+	}
+	return t->ops->xfer_msg(t, tx, n);
+}
+
 static void ops_delay_us(void *ctx, unsigned int us)
 {
 	struct mcp2510_transport *t = ((struct mcp2510 *)ctx)->transport;
@@ -63,6 +89,7 @@ static void ops_delay_us(void *ctx, unsigned int us)
 
 static const struct mcp2510_ops lib_ops = {
 	.xfer = ops_xfer,
+	.xfer_msg = ops_xfer_msg,
 	.delay_us = ops_delay_us,
 };
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 /*
  * The chip on a Linux spidev device: one SPI_IOC_MESSAGE(1) per
- * chip-select-low period, INT on a GPIO line or, without one, a periodic
+ * chip-select-low period (or one message for a few), INT on a GPIO line or, without one, a periodic
  * timer telling the library when to look at the chip.
  */
 #define _GNU_SOURCE
@@ -56,6 +56,42 @@ static int spidev_xfer(struct mcp2510_transport *t, const uint8_t *tx,
 		return -EIO;
 	s->counts.spi_transfers++;
 	s->counts.spi_bytes += len;
+	return 0;
+}
+
+#define SPIDEV_MSG_MAX	4
+
+/*
+ * One SPI_IOC_MESSAGE of @n transfers, cs_change on all but the last: CS
+ * rises between them for the controller's cs_change delay (spidev does
+ * not let us set it; the SPI core's default is 10 us), with no return to
+ * userspace in between.
+ */
+static int spidev_xfer_msg(struct mcp2510_transport *t,
+			   const struct mcp2510_transport_xfer *x,
+			   unsigned int n)
+{
+	struct spidev_transport *s = to_spidev(t);
+	struct spi_ioc_transfer tr[SPIDEV_MSG_MAX];
+	unsigned int i;
+
+	if (!n || n > SPIDEV_MSG_MAX)
+		return -EINVAL;
+	memset(tr, 0, sizeof(tr));
+	for (i = 0; i < n; i++) {
+		tr[i].tx_buf = (uintptr_t)x[i].tx;
+		tr[i].rx_buf = (uintptr_t)x[i].rx;
+		tr[i].len = x[i].len;
+		tr[i].speed_hz = s->speed_hz;
+		tr[i].bits_per_word = 8;
+		tr[i].cs_change = i + 1 < n;
+	}
+	if (ioctl(s->fd, SPI_IOC_MESSAGE(n), tr) < 0)
+		return -EIO;
+	for (i = 0; i < n; i++) {
+		s->counts.spi_transfers++;
+		s->counts.spi_bytes += x[i].len;
+	}
 	return 0;
 }
 
@@ -129,6 +165,7 @@ static void spidev_close(struct mcp2510_transport *t)
 
 static const struct mcp2510_transport_ops spidev_ops = {
 	.xfer = spidev_xfer,
+	.xfer_msg = spidev_xfer_msg,
 	.delay_us = spidev_delay_us,
 	.wait_irq = spidev_wait_irq,
 	.fd = spidev_fd,

@@ -1,7 +1,8 @@
 /* SPDX-License-Identifier: LGPL-2.1-or-later */
 /*
  * What the library needs from the thing that reaches the chip: one
- * chip-select-low transfer, a delay, and a way to wait for the INT pin.
+ * chip-select-low transfer (or a few in one message), a delay, and a way
+ * to wait for the INT pin.
  * spidev.c and sim_transport.c provide it.
  */
 #ifndef MCP2510_TRANSPORT_H
@@ -18,10 +19,26 @@ struct mcp2510_transport_counts {
 	uint64_t interrupts;
 };
 
+/* One CS-low period of a message; @rx may be NULL. */
+struct mcp2510_transport_xfer {
+	const uint8_t *tx;
+	uint8_t *rx;
+	unsigned int len;
+};
+
 struct mcp2510_transport_ops {
 	/* One CS-low period; @rx may be NULL.  0 or -errno. */
 	int (*xfer)(struct mcp2510_transport *t, const uint8_t *tx,
 		    uint8_t *rx, unsigned int len);
+	/*
+	 * Optional: @n CS-low periods in one message, CS rising only
+	 * briefly between them (the core's receive-order check needs them
+	 * microseconds apart).  Without it the library calls xfer for each,
+	 * which is as good where no time passes between calls (the
+	 * simulated bus).  0 or -errno.
+	 */
+	int (*xfer_msg)(struct mcp2510_transport *t,
+			const struct mcp2510_transport_xfer *x, unsigned int n);
 	void (*delay_us)(struct mcp2510_transport *t, unsigned int us);
 	/*
 	 * Wait up to @timeout_ms (0: just look, -1: forever) for INT, or in
