@@ -130,13 +130,20 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 	priv->can.state = CAN_STATE_STOPPED;
 }
 
-/* Bus-off without restart-ms: keep the chip off the bus until restarted. */
+/*
+ * Bus-off: keep the chip off the bus until can-dev restarts it, by hand or
+ * after restart-ms.  The interface becomes bus-off only once the chip is
+ * stopped and its frames aborted: a restart must find a quiet device.
+ */
 void mcp2510_halt_locked(struct mcp2510_priv *priv)
 {
 	lockdep_assert_held(&priv->lock);
 	priv->halt_requested = false;
 	mcp2510_stop(&priv->chip);
 	priv->halted = true;
+	/* Bus-off is the controller's as a whole: no direction to blame. */
+	can_change_state(priv->ndev, NULL, CAN_STATE_BUS_OFF, CAN_STATE_BUS_OFF);
+	can_bus_off(priv->ndev);
 }
 
 int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
