@@ -5,11 +5,15 @@
  * the interface is down.
  */
 #include <linux/interrupt.h>
+#include <linux/minmax.h>
 #include <linux/netdevice.h>
 #include <linux/regulator/consumer.h>
 #include <linux/spi/spi.h>
 
 #include "mcp2510_priv.h"
+
+/* The shortest wait before an automatic restart that failed is tried again. */
+#define MCP2510_RESTART_RETRY_MS	1000
 
 /* Reset the chip, check that it answers, and leave it asleep until open. */
 int mcp2510_chip_reset_sleep(struct mcp2510_priv *priv)
@@ -36,13 +40,17 @@ static int mcp2510_chip_start_locked(struct mcp2510_priv *priv)
 	if (ret)
 		return ret;
 
-	/* Any state the core reports from here on is relative to active. */
-	priv->can.state = CAN_STATE_ERROR_ACTIVE;
+	/*
+	 * The state changes only once the chip runs: a restart that failed
+	 * leaves the interface bus-off, where a later restart is allowed.
+	 * Start reports no state, so nothing is lost by setting it after.
+	 */
 	ret = mcp2510_start(&priv->chip, &priv->can.bittiming,
 			    priv->can.ctrlmode);
 	if (ret)
 		return ret;
 
+	priv->can.state = CAN_STATE_ERROR_ACTIVE;
 	priv->halted = false;
 	priv->halt_requested = false;
 	/* The reset inside start returned the RXnBF pins to their defaults. */
@@ -146,6 +154,34 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv)
 	can_bus_off(priv->ndev);
 }
 
+/*
+ * An automatic restart that failed: can-dev leaves the interface bus-off
+ * with its carrier off and schedules nothing more, and a manual restart is
+ * refused while restart-ms is set.  Try again later, at most once a
+ * second, so that a chip without power does not flood the log.
+ */
+static void mcp2510_restart_retry(struct mcp2510_priv *priv)
+{
+	int ms = max(priv->can.restart_ms, MCP2510_RESTART_RETRY_MS);
+
+	if (priv->can.restart_ms)
+		schedule_delayed_work(&priv->can.restart_work,
+				      msecs_to_jiffies(ms));
+}
+
+/* Restart a chip stopped at bus-off; on failure it stays stopped. */
+static int mcp2510_restart_halted_locked(struct mcp2510_priv *priv)
+{
+	int ret;
+
+	ret = mcp2510_chip_start_locked(priv);
+	if (!ret)
+		return 0;
+	mcp2510_stop(&priv->chip);
+	mcp2510_restart_retry(priv);
+	return ret;
+}
+
 int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 {
 	struct mcp2510_priv *priv = netdev_priv(ndev);
@@ -159,7 +195,7 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 	if (!priv->hw_running) {
 		ret = -ENETDOWN;
 	} else if (priv->halted) {
-		ret = mcp2510_chip_start_locked(priv);
+		ret = mcp2510_restart_halted_locked(priv);
 	} else {
 		ret = mcp2510_restart(&priv->chip);
 		if (!ret)

@@ -75,7 +75,14 @@ static void mcp2510_watch_health(struct mcp2510_priv *priv)
 	if (ret)
 		return;
 	w->recovering = false;
+	/*
+	 * The chip is programmed again and error-active: the interface must
+	 * say so in full.  Its carrier is normally on (a bus-off chip is
+	 * stopped and never checked), but state and carrier go together.
+	 */
 	priv->can.state = CAN_STATE_ERROR_ACTIVE;
+	if (!netif_carrier_ok(priv->ndev))
+		netif_carrier_on(priv->ndev);
 	mcp2510_gpio_restore(priv);
 	mcp2510_watch_report_restart(priv);
 	netdev_info(priv->ndev, "chip re-initialised\n");
