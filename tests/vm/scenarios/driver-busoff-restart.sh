@@ -27,6 +27,11 @@ can_stat() {
 		for (i = 1; i <= 6; i++) if (n[i] == k) print $i }'
 }
 carrier() { cat "/sys/class/net/$1/carrier" 2>/dev/null || echo 0; }
+# no_carrier IF: without starting a process, so a bus-off is seen at once.
+no_carrier() {
+	read -r _c <"/sys/class/net/$1/carrier" 2>/dev/null || _c=0
+	[ "$_c" = 0 ]
+}
 operstate() { cat "/sys/class/net/$1/operstate"; }
 stat_is() { [ "$(can_stat "$1" "$2")" -eq "$3" ]; }
 log_count() { dmesg | grep -c "$1" || true; }
@@ -74,16 +79,29 @@ load_stop() {
 
 can_up can1 125000
 
-echo "== restart-ms 5000: off the bus until the restart"
-can_up can0 125000 restart-ms 5000
+echo "== restart-ms 10000: off the bus until the restart"
+can_up can0 125000 restart-ms 10000
 load_start
 echo $BUS_OFF_ERRORS >"$SIM/bus_errors"
-wait_for 30 stat_is can0 bus_off 1 || { describe can0; fail "can0 never went bus-off"; }
-nap 1
+wait_for 30 no_carrier can0 || { describe can0; fail "can0 never went bus-off"; }
+# Sample for two seconds, and judge only samples that no restart can
+# have overtaken (a loaded host may make the shell slow).
+checks=0
+_now
+end=$((NOW_S + 2))
+while [ "$NOW_S" -lt $end ]; do
+	stat_is can0 restarts 0 || break
+	held=0
+	off_bus can0 && [ "$(sim_state 0 opmode)" != normal ] && held=1
+	stat_is can0 restarts 0 || break
+	[ $held -eq 1 ] || { describe can0; fail "can0 left bus-off before its restart"; }
+	checks=$((checks + 1))
+	nap 0.3
+	_now
+done
 describe can0
-off_bus can0 || fail "can0 left bus-off before its restart"
-[ "$(sim_state 0 opmode)" != normal ] || fail "chip0 back on the bus before the restart"
-wait_for 15 stat_is can0 restarts 1 || { describe can0; fail "no restart"; }
+[ $checks -gt 0 ] || fail "the restart came before the first look"
+wait_for 20 stat_is can0 restarts 1 || { describe can0; fail "no restart"; }
 wait_for 10 on_bus can0 || { describe can0; fail "can0 not back on the bus after its restart"; }
 load_stop
 crosses 456 || fail "no traffic after the restart"
@@ -137,10 +155,11 @@ ip link set can0 down
 can_up can0 125000 restart-ms 3000
 bus_offs=$(can_stat can0 bus_off) restarts=$(can_stat can0 restarts)
 echo $BUS_OFF_ERRORS >"$SIM/bus_errors"
-cansend can0 123#02
-wait_for 30 stat_is can0 bus_off $((bus_offs + 1)) || { describe can0; fail "can0 never went bus-off"; }
 failed=$(log_count "can0: Restart failed")
+cansend can0 123#02
+wait_for 30 no_carrier can0 || { describe can0; fail "can0 never went bus-off"; }
 echo 0 >"$SIM/chip0/power"
+stat_is can0 bus_off $((bus_offs + 1)) || { describe can0; fail "bus-off not counted"; }
 wait_for 10 log_more "can0: Restart failed" "$failed" || { describe can0; fail "no failed restart"; }
 describe can0
 off_bus can0 || fail "a failed automatic restart left can0 inconsistent"
