@@ -89,8 +89,12 @@ load_stop() {
 
 can_up can1 125000
 
-echo "== restart-ms 10000: off the bus until the restart"
-can_up can0 125000 restart-ms 10000
+# The restart comes late enough for the shell to look first, also on the
+# debug kernel sharing a loaded host.
+hold_s=10
+[ "$VM_KERNEL" != debug ] || hold_s=30
+echo "== restart-ms $((hold_s * 1000)): off the bus until the restart"
+can_up can0 125000 restart-ms $((hold_s * 1000))
 load_start
 echo $BUS_OFF_ERRORS >"$SIM/bus_errors"
 wait_for 30 no_carrier can0 || { describe can0; fail "can0 never went bus-off"; }
@@ -111,7 +115,7 @@ while [ "$NOW_S" -lt $end ]; do
 done
 describe can0
 [ $checks -gt 0 ] || fail "the restart came before the first look"
-wait_for 20 stat_is can0 restarts 1 || { describe can0; fail "no restart"; }
+wait_for $((hold_s + 10)) stat_is can0 restarts 1 || { describe can0; fail "no restart"; }
 wait_for 10 on_bus can0 || { describe can0; fail "can0 not back on the bus after its restart"; }
 load_stop
 crosses 456 || fail "no traffic after the restart"
@@ -171,8 +175,10 @@ wait_for 30 no_carrier can0 || { describe can0; fail "can0 never went bus-off"; 
 echo 0 >"$SIM/chip0/power"
 stat_is can0 bus_off $((bus_offs + 1)) || { describe can0; fail "bus-off not counted"; }
 wait_for 10 log_more "can0: Restart failed" "$failed" || { describe can0; fail "no failed restart"; }
+# Each retry turns the carrier on while it tries (can_restart() does so
+# before calling the driver): judge the state between retries.
+wait_for 10 off_bus can0 || { describe can0; fail "a failed automatic restart left can0 inconsistent"; }
 describe can0
-off_bus can0 || fail "a failed automatic restart left can0 inconsistent"
 echo 1 >"$SIM/chip0/power"
 wait_for 15 on_bus can0 || { describe can0; fail "not back on the bus after the power came back"; }
 describe can0
