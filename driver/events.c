@@ -84,22 +84,24 @@ static void mcp2510_event_state(void *ctx, enum can_state state,
 	if (state == priv->can.state)
 		return;
 
+	/*
+	 * Left alone the chip would recover by itself after 128 x 11
+	 * recessive bits and be back on the bus, sending and completing
+	 * frames, while the carrier is off and can_restart() empties the echo
+	 * slots without the chip lock.  It is stopped once the interrupt pass
+	 * is over, and only then does the interface go bus-off (see
+	 * mcp2510_halt_locked()): no restart can find it busy.
+	 */
+	if (state == CAN_STATE_BUS_OFF) {
+		priv->halt_requested = true;
+		return;
+	}
+
 	/* Blame the direction whose counter is higher, as the stack expects. */
 	tx_state = bec->txerr >= bec->rxerr ? state : CAN_STATE_ERROR_ACTIVE;
 	rx_state = bec->txerr <= bec->rxerr ? state : CAN_STATE_ERROR_ACTIVE;
 	/* The core sends its own error frame; this keeps state and counters. */
 	can_change_state(priv->ndev, NULL, tx_state, rx_state);
-
-	if (state != CAN_STATE_BUS_OFF)
-		return;
-	can_bus_off(priv->ndev);
-	/*
-	 * The chip would recover by itself after 128 x 11 recessive bits, but
-	 * without restart-ms the interface must stay bus-off until the user
-	 * restarts it: stop the chip once the interrupt pass is over.
-	 */
-	if (!priv->can.restart_ms)
-		priv->halt_requested = true;
 }
 
 static void mcp2510_count_error(struct mcp2510_priv *priv,

@@ -34,19 +34,22 @@ unsigned long mcp2510_irq_trigger(struct mcp2510_priv *priv)
  * takes a flag cleared by another path in between.  Many in a short time
  * mean INT is asserted for no reason (a stuck line, a short), and an
  * edge-triggered loop that hits its bound means the chip never lets go.
- * Either way the line only keeps the CPU busy: hand the chip to the watch.
+ * A call whose SPI transfers fail clears nothing either: while the fault
+ * lasts, a level-triggered INT fires again as soon as it is unmasked.
+ * Either way the line only keeps the CPU busy: hand the chip to the watch,
+ * which polls it and gives the line back after a backoff.
  */
 static bool mcp2510_irq_storm(struct mcp2510_priv *priv, int handled)
 {
 	struct mcp2510_watch *w = &priv->watch;
 
-	if (handled != 0 && handled != -EAGAIN)
+	if (handled > 0)
 		return false;
 	if (time_after(jiffies, w->empty_since + HZ)) {
 		w->empty_since = jiffies;
 		w->empty_irqs = 0;
 	}
-	if (handled == 0 && ++w->empty_irqs < MCP2510_STORM_EMPTY_IRQS)
+	if (handled != -EAGAIN && ++w->empty_irqs < MCP2510_STORM_EMPTY_IRQS)
 		return false;
 	w->empty_irqs = 0;
 	mcp2510_watch_storm(priv);
@@ -75,8 +78,13 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data)
 		if (net_ratelimit())
 			netdev_err(priv->ndev, "interrupt handling failed: %pe\n",
 				   ERR_PTR(handled));
-		/* Lets the spurious-interrupt detector shut a dead chip up. */
-		return IRQ_NONE;
+		/*
+		 * The interrupt was the chip's; that it could not be read is
+		 * the storm accounting's business.  IRQ_NONE would feed
+		 * genirq's spurious detector, which disables the line for
+		 * good: nothing enables it again while the interface is up.
+		 */
+		return IRQ_HANDLED;
 	}
 	return handled ? IRQ_HANDLED : IRQ_NONE;
 }

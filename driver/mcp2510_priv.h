@@ -30,7 +30,7 @@
 struct regulator;
 struct clk;
 
-/* Calls finding nothing within a second that make an interrupt storm. */
+/* IRQ thread calls finding nothing, or failing, within a second: a storm. */
 #define MCP2510_STORM_EMPTY_IRQS	32
 
 /* watch.c: health checks, and polling through storms and missed edges */
@@ -45,7 +45,7 @@ struct mcp2510_watch {
 	unsigned long poll_until;	/* jiffies */
 	unsigned long irq_back_at;	/* jiffies: INT enabled again */
 	unsigned long empty_since;	/* jiffies: start of the counting */
-	unsigned int empty_irqs;	/* IRQ thread calls that found nothing */
+	unsigned int empty_irqs;	/* calls that found nothing or failed */
 	/* ethtool -S */
 	u64 irq_storms;
 	u64 missed_irqs;		/* work found by polling an edge line */

@@ -5,11 +5,15 @@
  * the interface is down.
  */
 #include <linux/interrupt.h>
+#include <linux/minmax.h>
 #include <linux/netdevice.h>
 #include <linux/regulator/consumer.h>
 #include <linux/spi/spi.h>
 
 #include "mcp2510_priv.h"
+
+/* The shortest wait before an automatic restart that failed is tried again. */
+#define MCP2510_RESTART_RETRY_MS	1000
 
 /* Reset the chip, check that it answers, and leave it asleep until open. */
 int mcp2510_chip_reset_sleep(struct mcp2510_priv *priv)
@@ -36,13 +40,17 @@ static int mcp2510_chip_start_locked(struct mcp2510_priv *priv)
 	if (ret)
 		return ret;
 
-	/* Any state the core reports from here on is relative to active. */
-	priv->can.state = CAN_STATE_ERROR_ACTIVE;
+	/*
+	 * The state changes only once the chip runs: a restart that failed
+	 * leaves the interface bus-off, where a later restart is allowed.
+	 * Start reports no state, so nothing is lost by setting it after.
+	 */
 	ret = mcp2510_start(&priv->chip, &priv->can.bittiming,
 			    priv->can.ctrlmode);
 	if (ret)
 		return ret;
 
+	priv->can.state = CAN_STATE_ERROR_ACTIVE;
 	priv->halted = false;
 	priv->halt_requested = false;
 	/* The reset inside start returned the RXnBF pins to their defaults. */
@@ -130,13 +138,48 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 	priv->can.state = CAN_STATE_STOPPED;
 }
 
-/* Bus-off without restart-ms: keep the chip off the bus until restarted. */
+/*
+ * Bus-off: keep the chip off the bus until can-dev restarts it, by hand or
+ * after restart-ms.  The interface becomes bus-off only once the chip is
+ * stopped and its frames aborted: a restart must find a quiet device.
+ */
 void mcp2510_halt_locked(struct mcp2510_priv *priv)
 {
 	lockdep_assert_held(&priv->lock);
 	priv->halt_requested = false;
 	mcp2510_stop(&priv->chip);
 	priv->halted = true;
+	/* Bus-off is the controller's as a whole: no direction to blame. */
+	can_change_state(priv->ndev, NULL, CAN_STATE_BUS_OFF, CAN_STATE_BUS_OFF);
+	can_bus_off(priv->ndev);
+}
+
+/*
+ * An automatic restart that failed: can-dev leaves the interface bus-off
+ * with its carrier off and schedules nothing more, and a manual restart is
+ * refused while restart-ms is set.  Try again later, at most once a
+ * second, so that a chip without power does not flood the log.
+ */
+static void mcp2510_restart_retry(struct mcp2510_priv *priv)
+{
+	int ms = max(priv->can.restart_ms, MCP2510_RESTART_RETRY_MS);
+
+	if (priv->can.restart_ms)
+		schedule_delayed_work(&priv->can.restart_work,
+				      msecs_to_jiffies(ms));
+}
+
+/* Restart a chip stopped at bus-off; on failure it stays stopped. */
+static int mcp2510_restart_halted_locked(struct mcp2510_priv *priv)
+{
+	int ret;
+
+	ret = mcp2510_chip_start_locked(priv);
+	if (!ret)
+		return 0;
+	mcp2510_stop(&priv->chip);
+	mcp2510_restart_retry(priv);
+	return ret;
 }
 
 int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
@@ -152,7 +195,7 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 	if (!priv->hw_running) {
 		ret = -ENETDOWN;
 	} else if (priv->halted) {
-		ret = mcp2510_chip_start_locked(priv);
+		ret = mcp2510_restart_halted_locked(priv);
 	} else {
 		ret = mcp2510_restart(&priv->chip);
 		if (!ret)

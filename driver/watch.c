@@ -8,9 +8,11 @@
  *   0), so only a look at its registers tells; it is then programmed
  *   again with the same settings, giving up the frames in its buffers.
  * - Interrupt storms: when the IRQ thread finds INT asserted with nothing
- *   to handle, over and over, it disables the line and the watch polls
- *   the chip instead, every MCP2510_POLL_MS, for a backoff period.  Then
- *   the line is tried again; a storm that goes on doubles the backoff.
+ *   to handle, or cannot read the chip at all (SPI failing while a level
+ *   INT stays asserted), over and over, it disables the line and the
+ *   watch polls the chip instead, every MCP2510_POLL_MS, for a backoff
+ *   period.  Then the line is tried again; a storm that goes on doubles
+ *   the backoff.
  * - Missed edges: on an edge-triggered line an edge lost while INT was
  *   already low leaves INT low for good and no further edge comes.  The
  *   watch runs the interrupt loop every MCP2510_WATCH_EDGE_MS, which
@@ -73,7 +75,14 @@ static void mcp2510_watch_health(struct mcp2510_priv *priv)
 	if (ret)
 		return;
 	w->recovering = false;
+	/*
+	 * The chip is programmed again and error-active: the interface must
+	 * say so in full.  Its carrier is normally on (a bus-off chip is
+	 * stopped and never checked), but state and carrier go together.
+	 */
 	priv->can.state = CAN_STATE_ERROR_ACTIVE;
+	if (!netif_carrier_ok(priv->ndev))
+		netif_carrier_on(priv->ndev);
 	mcp2510_gpio_restore(priv);
 	mcp2510_watch_report_restart(priv);
 	netdev_info(priv->ndev, "chip re-initialised\n");
