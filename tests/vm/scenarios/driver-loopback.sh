@@ -17,7 +17,7 @@ command -v can-echo >/dev/null || fail "can-echo is not in the guest"
 can_up can0 500000
 can_up can1 500000
 rx0=$(if_stat can0 rx_packets) rxb0=$(if_stat can0 rx_bytes)
-tx0=$(if_stat can0 tx_packets)
+tx0=$(if_stat can0 tx_packets) txb0=$(if_stat can0 tx_bytes)
 
 can-echo can0 >/tmp/echo.txt || { cat /tmp/echo.txt; fail "can-echo did not finish"; }
 cat /tmp/echo.txt
@@ -32,6 +32,11 @@ diff /tmp/expected.txt /tmp/echo.txt || fail "the sockets saw other echoes than 
 # Four cases of three frames and a marker, all sent.  (can1 need not
 # receive them all: mainline's mcp251x drops some of a burst under TCG.)
 [ $(($(if_stat can0 tx_packets) - tx0)) -eq 16 ] || fail "can0 tx_packets grew by $(($(if_stat can0 tx_packets) - tx0)), expected 16"
+# One data byte each.  Mainline's can_get_echo_skb() returns 0 for an
+# echo it drops, so mcp251x leaves the six loopback-off frames out.
+if [ "$VM_DRIVER" = mcp2510 ]; then
+	[ $(($(if_stat can0 tx_bytes) - txb0)) -eq 16 ] || fail "can0 tx_bytes grew by $(($(if_stat can0 tx_bytes) - txb0)), expected 16"
+fi
 [ "$(if_stat can0 rx_packets)" -eq "$rx0" ] || fail "can0 counted echoes as received: rx_packets $rx0 -> $(if_stat can0 rx_packets)"
 [ "$(if_stat can0 rx_bytes)" -eq "$rxb0" ] || fail "can0 counted echoes as received: rx_bytes $rxb0 -> $(if_stat can0 rx_bytes)"
 echo "driver-loopback: ok"
