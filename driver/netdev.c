@@ -160,7 +160,7 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 	if (ret)
 		return ret;
 
-	netif_wake_queue(ndev);
+	mcp2510_tx_wake_queue(priv);
 	return 0;
 }
 
