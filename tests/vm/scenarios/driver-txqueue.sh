@@ -12,6 +12,9 @@
 #   qdisc: the three are given up (the chip loses power), the ten wait
 #   for the resume and go out then.  A queue woken while the device is
 #   detached would feed them to the sleeping driver, which drops them.
+# - Suspend while a bus-off restart is pending: it must not run while the
+#   chip sleeps (it would fail and take the carrier down); resume starts
+#   the chip afresh anyway.
 set -eu
 . /lib/rig.sh
 
@@ -23,6 +26,7 @@ restarts() {
 		awk '/re-started bus-errors/ { getline; print $1 }'
 }
 restarted_thrice() { [ "$(restarts)" -ge 3 ]; }
+restart_scheduled() { dmesg | grep -q 'bus-off, scheduling restart in 2000 ms'; }
 
 echo "== bus-off and restarts under a full queue"
 can_up can0 125000 restart-ms 20
@@ -65,4 +69,30 @@ dump_wait
 got=$(grep -c '456 *\[1\]' /tmp/backlog.txt || true)
 [ "$lost" -eq 3 ] || fail "$lost frames dropped over the sleep, expected the 3 in the chip"
 [ "$got" -eq 10 ] || fail "can1 got $got of the 10 frames queued over the sleep"
+ip link set can0 down
+ip link set can1 down
+
+echo "== suspend with a bus-off restart pending"
+# restart-ms 2000 falls within the PM test's 5 s in the suspended state.
+can_up can0 125000 restart-ms 2000
+can_up can1 125000
+echo 1000 >"$SIM/bus_errors"
+cansend can0 789#01
+# The chip may leave bus-off by itself at once: what matters is that
+# can-dev has scheduled the restart.
+wait_for 30 restart_scheduled || fail "can0 never went bus-off"
+echo 0 >"$SIM/bus_errors"
+before=$(restarts)
+echo devices >/sys/power/pm_test
+echo freeze >/sys/power/state || fail "suspend failed: $(dmesg | tail -n 5)"
+echo none >/sys/power/pm_test
+if dmesg | grep 'Restart failed'; then
+	fail "the pending restart ran during the sleep"
+fi
+[ "$(restarts)" -eq "$before" ] || fail "a restart was counted during the sleep"
+can_state_is can0 ERROR-ACTIVE || fail "can0 not error-active after resume"
+dump_start can1,789:7ff 1 /tmp/resumed.txt
+cansend can0 789#02 || fail "cansend after resume"
+dump_wait
+grep -q '789 *\[1\] *02' /tmp/resumed.txt || fail "can0 sends nothing after resume"
 echo "driver-txqueue: ok"
