@@ -21,35 +21,8 @@ static void mcp2510_event_rx(void *ctx, const struct can_frame *frame)
 		return;
 	}
 	*cf = *frame;
-	/* rx_packets and rx_bytes are counted on delivery. */
+	/* rx_packets and rx_bytes are counted once it is queued. */
 	mcp2510_rx_queue(priv, skb);
-}
-
-/*
- * The echo goes the way of received frames: can_get_echo_skb() would hand
- * it to netif_rx(), the backlog of whichever CPU this runs on, and
- * completions found by the IRQ thread and by the watch's poll on two CPUs
- * could reach local listeners out of order.  can-dev does not export the
- * half of it that only takes the skb, hence this.  Returns the frame's
- * data length for tx_bytes.
- */
-static unsigned int mcp2510_echo_queue(struct mcp2510_priv *priv,
-				       unsigned int slot)
-{
-	struct sk_buff *skb = priv->can.echo_skb[slot];
-	const struct can_frame *cf;
-	unsigned int len;
-
-	if (!skb)
-		return 0;
-	priv->can.echo_skb[slot] = NULL;
-	if (skb_shinfo(skb)->tx_flags & SKBTX_IN_PROGRESS)
-		skb_tstamp_tx(skb, skb_hwtstamps(skb));
-	cf = (const struct can_frame *)skb->data;
-	len = cf->can_id & CAN_RTR_FLAG ? 0 : cf->len;
-	/* From here NAPI may deliver and free it on another CPU. */
-	mcp2510_rx_queue_echo(priv, skb);
-	return len;
 }
 
 static void mcp2510_event_tx_done(void *ctx, unsigned int slot)
@@ -57,7 +30,7 @@ static void mcp2510_event_tx_done(void *ctx, unsigned int slot)
 	struct mcp2510_priv *priv = ctx;
 	struct net_device_stats *stats = &priv->ndev->stats;
 
-	stats->tx_bytes += mcp2510_echo_queue(priv, slot);
+	stats->tx_bytes += mcp2510_rx_queue_echo(priv, slot);
 	stats->tx_packets++;
 	mcp2510_tx_slot_release(priv, slot);
 }

@@ -69,7 +69,6 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data)
 		mcp2510_halt_locked(priv);
 	storm = mcp2510_irq_storm(priv, handled);
 	mcp2510_unlock(priv);
-	mcp2510_rx_kick(priv);
 
 	/* Handled by disabling the line: not for the spurious detector. */
 	if (storm || handled == -EAGAIN)

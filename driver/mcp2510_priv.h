@@ -9,6 +9,7 @@
 #define MCP2510_PRIV_H
 
 #include <linux/can/dev.h>
+#include <linux/can/rx-offload.h>
 #include <linux/skbuff.h>
 #include <linux/gpio/driver.h>
 #include <linux/mutex.h>
@@ -53,8 +54,10 @@ struct mcp2510_watch {
 
 struct mcp2510_priv {
 	struct can_priv can;		/* first: the CAN core expects it */
-	struct napi_struct napi;
-	struct sk_buff_head rx_queue;	/* frames for the stack, in order */
+	struct can_rx_offload offload;	/* frames for the stack, in order */
+	/* received frames queued for the stack, under lock (rx.c) */
+	unsigned long rx_packets;
+	unsigned long rx_bytes;
 	struct net_device *ndev;
 	struct spi_device *spi;
 	struct regulator *vdd;
@@ -113,12 +116,15 @@ void mcp2510_unlock(struct mcp2510_priv *priv);
 extern const struct mcp2510_events mcp2510_netdev_events;
 
 /* rx.c */
-void mcp2510_rx_init(struct mcp2510_priv *priv);
+int mcp2510_rx_init(struct mcp2510_priv *priv);
 void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb);
-void mcp2510_rx_queue_echo(struct mcp2510_priv *priv, struct sk_buff *skb);
-void mcp2510_rx_kick(struct mcp2510_priv *priv);
-int mcp2510_rx_poll(struct napi_struct *napi, int budget);
+unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
+				   unsigned int slot);
+void mcp2510_rx_flush(struct mcp2510_priv *priv);
+void mcp2510_get_stats64(struct net_device *ndev,
+			 struct rtnl_link_stats64 *stats);
 void mcp2510_rx_disable(struct mcp2510_priv *priv);
+void mcp2510_rx_del(struct mcp2510_priv *priv);
 
 /* netdev.c */
 extern const struct net_device_ops mcp2510_netdev_ops;
@@ -135,6 +141,7 @@ netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev);
 void mcp2510_tx_work(struct work_struct *work);
 void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot);
 void mcp2510_tx_flush(struct mcp2510_priv *priv);
+void mcp2510_tx_wake_queue(struct mcp2510_priv *priv);
 void mcp2510_tx_forget(struct mcp2510_priv *priv);
 
 /* irq.c */

@@ -77,7 +77,7 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 	if (ret)
 		return ret;
 
-	napi_enable(&priv->napi);
+	can_rx_offload_enable(&priv->offload);
 	/*
 	 * The handler is in place before the chip starts: on an edge
 	 * triggered line an INT asserted during start would otherwise never
@@ -96,7 +96,6 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 	else
 		priv->hw_running = true;
 	mcp2510_unlock(priv);
-	mcp2510_rx_kick(priv);
 	if (ret)
 		goto out_free_irq;
 	mcp2510_watch_start(priv);
@@ -132,7 +131,6 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 	mcp2510_tx_forget(priv);
 	mcp2510_unlock(priv);
 
-	mcp2510_rx_kick(priv);
 	mcp2510_rx_disable(priv);
 	mcp2510_xceiver_disable(priv);
 	priv->can.state = CAN_STATE_STOPPED;
@@ -202,11 +200,10 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 			priv->can.state = CAN_STATE_ERROR_ACTIVE;
 	}
 	mcp2510_unlock(priv);
-	mcp2510_rx_kick(priv);
 	if (ret)
 		return ret;
 
-	netif_wake_queue(ndev);
+	mcp2510_tx_wake_queue(priv);
 	return 0;
 }
 
@@ -257,4 +254,5 @@ const struct net_device_ops mcp2510_netdev_ops = {
 	.ndo_stop = mcp2510_stop_netdev,
 	.ndo_start_xmit = mcp2510_start_xmit,
 	.ndo_change_mtu = can_change_mtu,
+	.ndo_get_stats64 = mcp2510_get_stats64,
 };

@@ -52,7 +52,15 @@ static int mcp2510_suspend(struct device *dev)
 
 	priv->suspended_running = netif_running(priv->ndev);
 	if (priv->suspended_running) {
+		/*
+		 * Detached, the queue stays stopped until resume attaches it
+		 * (mcp2510_tx_wake() checks); netif_tx_disable() waits for a
+		 * start_xmit running on another CPU, and no bus-off restart
+		 * may wake the queue or start the chip meanwhile.
+		 */
 		netif_device_detach(priv->ndev);
+		netif_tx_disable(priv->ndev);
+		cancel_delayed_work_sync(&priv->can.restart_work);
 		mcp2510_hw_down(priv);
 	}
 	mcp2510_power_off(priv);

@@ -209,10 +209,13 @@ static int mcp2510_probe(struct spi_device *spi)
 	if (ret)
 		goto out_free_candev;
 
+	ret = mcp2510_rx_init(priv);
+	if (ret)
+		goto out_free_candev;
 	ret = mcp2510_power_on(priv);
 	if (ret) {
 		dev_err(dev, "cannot power the chip: %pe\n", ERR_PTR(ret));
-		goto out_free_candev;
+		goto out_del_rx;
 	}
 	ret = mcp2510_chip_reset_sleep(priv);
 	if (ret) {
@@ -221,11 +224,10 @@ static int mcp2510_probe(struct spi_device *spi)
 		goto out_power_off;
 	}
 
-	mcp2510_rx_init(priv);
 	ret = mcp2510_gpio_register(priv);
 	if (ret) {
 		dev_err(dev, "cannot add the gpiochip: %pe\n", ERR_PTR(ret));
-		goto out_del_napi;
+		goto out_power_off;
 	}
 	ret = register_candev(ndev);
 	if (ret) {
@@ -239,10 +241,10 @@ static int mcp2510_probe(struct spi_device *spi)
 
 out_remove_gpio:
 	mcp2510_gpio_unregister(priv);
-out_del_napi:
-	netif_napi_del(&priv->napi);
 out_power_off:
 	mcp2510_power_off(priv);
+out_del_rx:
+	mcp2510_rx_del(priv);
 out_free_candev:
 	free_candev(ndev);
 	return ret;
@@ -255,8 +257,8 @@ static void mcp2510_remove(struct spi_device *spi)
 
 	unregister_candev(ndev);
 	mcp2510_gpio_unregister(priv);
-	netif_napi_del(&priv->napi);
 	mcp2510_power_off(priv);
+	mcp2510_rx_del(priv);
 	free_candev(ndev);
 }
 

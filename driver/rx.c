@@ -1,102 +1,133 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * Receive path: the IRQ thread queues frames, error frames and the echoes
- * of sent frames here and a NAPI poll hands them to the stack, so they
- * arrive in exactly the order the chip produced them whichever CPU the
- * thread ran on.  (netif_rx() would use the backlog of the current CPU and
- * could reorder frames read on different CPUs.)  can_rx_offload would do
- * the same, but can-dev only contains it when an in-tree driver selects
- * CONFIG_CAN_RX_OFFLOAD, which an out-of-tree module cannot: many small
- * kernels lack it.
+ * Receive path, on can-dev's rx-offload in manual mode.  Whoever holds the
+ * chip lock (the IRQ thread, the watch polling the chip, the TX work)
+ * queues received frames, error frames and the echoes of sent frames, and
+ * releasing the lock hands the batch to rx-offload's NAPI poll.  So they
+ * reach the stack in exactly the order the chip produced them whichever
+ * CPU each pass ran on; netif_rx() would use the backlog of the current
+ * CPU and could reorder frames read on different CPUs.  The echo helpers
+ * are can-dev's own: an echo goes to the local sockets only when the
+ * sender asked for loopback, as af_can expects of IFF_ECHO drivers.
+ *
+ * rx-offload's poll counts every frame it delivers as received, echoes
+ * included; echoes are the driver's sent traffic, so the interface
+ * reports the driver's own count of received frames instead.
  */
 #include <linux/can/dev.h>
-#include <linux/if_packet.h>
+#include <linux/can/rx-offload.h>
+#include <linux/can/skb.h>
 #include <linux/netdevice.h>
-#include <linux/skbuff.h>
 
 #include "mcp2510_priv.h"
 
-/* Bounds memory while the stack lags: about 2 s of frames at 1 Mbit/s. */
-#define MCP2510_RX_QUEUE_MAX	16384
-
-void mcp2510_rx_init(struct mcp2510_priv *priv)
+/*
+ * Everything goes to the tail of the queue, in the order it is queued.
+ * Before 6.6 can-dev has no echo helper that does that, only one that
+ * sorts by timestamp: with every skb stamped 0 the sort appends as well.
+ * Kbuild tells which the headers have.
+ */
+#ifdef MCP2510_HAVE_ECHO_QUEUE_TAIL
+static int mcp2510_offload_queue(struct can_rx_offload *offload,
+				 struct sk_buff *skb)
 {
-	skb_queue_head_init(&priv->rx_queue);
-	netif_napi_add(priv->ndev, &priv->napi, mcp2510_rx_poll);
+	return can_rx_offload_queue_tail(offload, skb);
 }
 
+static void mcp2510_offload_echo(struct can_rx_offload *offload,
+				 unsigned int slot)
+{
+	can_rx_offload_get_echo_skb_queue_tail(offload, slot, NULL);
+}
+#else
+static int mcp2510_offload_queue(struct can_rx_offload *offload,
+				 struct sk_buff *skb)
+{
+	return can_rx_offload_queue_timestamp(offload, skb, 0);
+}
+
+static void mcp2510_offload_echo(struct can_rx_offload *offload,
+				 unsigned int slot)
+{
+	can_rx_offload_get_echo_skb(offload, slot, 0, NULL);
+}
+#endif
+
+/* Before the first use of the chip lock: unlocking hands frames on. */
+int mcp2510_rx_init(struct mcp2510_priv *priv)
+{
+	return can_rx_offload_add_manual(priv->ndev, &priv->offload,
+					 NAPI_POLL_WEIGHT);
+}
+
+/* A received frame or an error frame, with the chip lock held. */
 void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
 {
+	const struct can_frame *cf = (const struct can_frame *)skb->data;
 	struct net_device_stats *stats = &priv->ndev->stats;
+	canid_t id = cf->can_id;
+	u8 len = cf->len;
 
-	if (skb_queue_len(&priv->rx_queue) >= MCP2510_RX_QUEUE_MAX) {
-		dev_kfree_skb_any(skb);
+	lockdep_assert_held(&priv->lock);
+	/* On failure rx-offload has freed the skb: the stack lags too far. */
+	if (mcp2510_offload_queue(&priv->offload, skb)) {
 		stats->rx_dropped++;
 		stats->rx_fifo_errors++;
 		return;
 	}
-	skb_queue_tail(&priv->rx_queue, skb);
+	/* Error frames are not traffic: they are counted by their class. */
+	if (id & CAN_ERR_FLAG)
+		return;
+	WRITE_ONCE(priv->rx_packets, priv->rx_packets + 1);
+	if (!(id & CAN_RTR_FLAG))
+		WRITE_ONCE(priv->rx_bytes, priv->rx_bytes + len);
 }
 
 /*
- * The echo of a sent frame, in completion order.  It is marked as looped
- * back while queued so that mcp2510_rx_poll() does not count it received.
+ * The echo of the frame sent from @slot, behind everything read before
+ * its completion; can-dev drops it instead when the sender wanted no
+ * loopback.  Returns the frame's data length for tx_bytes, which the
+ * helper does not when it drops the echo.
  */
-void mcp2510_rx_queue_echo(struct mcp2510_priv *priv, struct sk_buff *skb)
+unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
+				   unsigned int slot)
 {
-	skb->pkt_type = PACKET_LOOPBACK;
-	skb_queue_tail(&priv->rx_queue, skb);
+	struct sk_buff *skb = priv->can.echo_skb[slot];
+	unsigned int len;
+
+	lockdep_assert_held(&priv->lock);
+	if (!skb)
+		return 0;
+	len = can_skb_get_data_len(skb);
+	mcp2510_offload_echo(&priv->offload, slot);
+	return len;
 }
 
-/* After a pass over the chip: let NAPI deliver what it queued. */
-void mcp2510_rx_kick(struct mcp2510_priv *priv)
+/* From mcp2510_unlock(): let NAPI deliver what this lock hold queued. */
+void mcp2510_rx_flush(struct mcp2510_priv *priv)
 {
-	if (skb_queue_empty_lockless(&priv->rx_queue))
-		return;
-	/* From a thread: the softirq must run when BHs come back on. */
-	local_bh_disable();
-	napi_schedule(&priv->napi);
-	local_bh_enable();
+	lockdep_assert_held(&priv->lock);
+	can_rx_offload_threaded_irq_finish(&priv->offload);
 }
 
-static void mcp2510_rx_count(struct net_device *ndev,
-			     const struct sk_buff *skb)
+void mcp2510_get_stats64(struct net_device *ndev,
+			 struct rtnl_link_stats64 *stats)
 {
-	const struct can_frame *cf = (const struct can_frame *)skb->data;
+	struct mcp2510_priv *priv = netdev_priv(ndev);
 
-	/* Error frames are not traffic: they are counted by their class. */
-	if (cf->can_id & CAN_ERR_FLAG)
-		return;
-	ndev->stats.rx_packets++;
-	if (!(cf->can_id & CAN_RTR_FLAG))
-		ndev->stats.rx_bytes += cf->len;
-}
-
-int mcp2510_rx_poll(struct napi_struct *napi, int budget)
-{
-	struct mcp2510_priv *priv = container_of(napi, struct mcp2510_priv,
-						 napi);
-	struct sk_buff *skb;
-	int done = 0;
-
-	while (done < budget && (skb = skb_dequeue(&priv->rx_queue))) {
-		if (skb->pkt_type == PACKET_LOOPBACK)
-			skb->pkt_type = PACKET_BROADCAST;
-		else
-			mcp2510_rx_count(priv->ndev, skb);
-		netif_receive_skb(skb);
-		done++;
-	}
-	/* A frame queued while the poll was finishing found it scheduled. */
-	if (done < budget && napi_complete_done(napi, done) &&
-	    !skb_queue_empty_lockless(&priv->rx_queue))
-		napi_schedule(napi);
-	return done;
+	netdev_stats_to_stats64(stats, &ndev->stats);
+	stats->rx_packets = READ_ONCE(priv->rx_packets);
+	stats->rx_bytes = READ_ONCE(priv->rx_bytes);
 }
 
 /* Interface down: deliver nothing more, free what is still queued. */
 void mcp2510_rx_disable(struct mcp2510_priv *priv)
 {
-	napi_disable(&priv->napi);
-	skb_queue_purge(&priv->rx_queue);
+	can_rx_offload_disable(&priv->offload);
+	skb_queue_purge(&priv->offload.skb_queue);
+}
+
+void mcp2510_rx_del(struct mcp2510_priv *priv)
+{
+	can_rx_offload_del(&priv->offload);
 }

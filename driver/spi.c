@@ -15,8 +15,13 @@ void mcp2510_lock(struct mcp2510_priv *priv)
 	mutex_lock(&priv->lock);
 }
 
+/*
+ * What was queued for the stack under the lock goes to NAPI before the
+ * next holder can queue more: the stack sees the chip's order.
+ */
 void mcp2510_unlock(struct mcp2510_priv *priv)
 {
+	mcp2510_rx_flush(priv);
 	mutex_unlock(&priv->lock);
 }
 

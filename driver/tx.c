@@ -17,11 +17,25 @@ static unsigned int mcp2510_tx_busy(const struct mcp2510_priv *priv)
 	       hweight8(priv->tx_inflight);
 }
 
+/*
+ * Under tx_lock, which start_xmit holds while it takes a buffer.  A
+ * detached device (suspend) keeps its queue stopped whatever frees:
+ * netif_device_attach() wakes it.
+ */
 static void mcp2510_tx_wake(struct mcp2510_priv *priv)
 {
 	if (mcp2510_tx_busy(priv) < MCP2510_TXB_COUNT &&
-	    netif_queue_stopped(priv->ndev))
+	    netif_queue_stopped(priv->ndev) &&
+	    netif_device_present(priv->ndev))
 		netif_wake_queue(priv->ndev);
+}
+
+/* After a restart: only if a buffer is free, or start_xmit gets BUSY. */
+void mcp2510_tx_wake_queue(struct mcp2510_priv *priv)
+{
+	spin_lock_bh(&priv->tx_lock);
+	mcp2510_tx_wake(priv);
+	spin_unlock_bh(&priv->tx_lock);
 }
 
 netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev)
@@ -122,10 +136,15 @@ void mcp2510_tx_work(struct work_struct *work)
 	struct sk_buff *skb;
 	int ret;
 
-	/* One frame per lock hold: completions may free buffers meanwhile. */
+	/*
+	 * One frame per lock hold: completions may free buffers meanwhile.
+	 * tx_dropped is counted under the lock, as the events count it.
+	 */
 	while ((skb = mcp2510_tx_fifo_pop(priv))) {
 		mcp2510_lock(priv);
 		ret = mcp2510_tx_load(priv, skb);
+		if (ret)
+			priv->ndev->stats.tx_dropped++;
 		mcp2510_unlock(priv);
 		if (!ret)
 			continue;
@@ -133,7 +152,6 @@ void mcp2510_tx_work(struct work_struct *work)
 			netdev_err_once(priv->ndev, "loading a frame failed: %pe\n",
 					ERR_PTR(ret));
 		dev_kfree_skb(skb);
-		priv->ndev->stats.tx_dropped++;
 		mcp2510_tx_loaded(priv, ret);
 	}
 }
@@ -148,7 +166,9 @@ void mcp2510_tx_flush(struct mcp2510_priv *priv)
 
 	while ((skb = mcp2510_tx_fifo_pop(priv))) {
 		dev_kfree_skb(skb);
+		mcp2510_lock(priv);
 		priv->ndev->stats.tx_dropped++;
+		mcp2510_unlock(priv);
 		mcp2510_tx_loaded(priv, -ENETDOWN);
 	}
 }

@@ -148,7 +148,6 @@ static void mcp2510_watch_work(struct work_struct *work)
 	delay = mcp2510_watch_delay(priv);
 	mcp2510_unlock(priv);
 
-	mcp2510_rx_kick(priv);
 	queue_delayed_work(system_wq, &w->work, delay);
 }
 

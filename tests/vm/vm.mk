@@ -26,6 +26,21 @@ export VM_KERNELS
 
 vm_kdir = $(shell $(VM_DIR)/kernel-info $(1) kdir)
 
+# Small programs the scenarios run in the guest (tests/vm/guest/NAME.c),
+# for what the stock tools cannot show; vm-run copies build/vm/guest-bin
+# to the guest's /usr/local/bin.
+VM_GUEST_BIN := $(BUILD)/vm/guest-bin
+VM_GUEST_TOOLS := $(patsubst $(VM_DIR)/guest/%.c,$(VM_GUEST_BIN)/%,\
+		  $(wildcard $(VM_DIR)/guest/*.c))
+VMTEST_DEPS += vm-guest-tools
+
+.PHONY: vm-guest-tools
+vm-guest-tools: $(VM_GUEST_TOOLS)
+
+$(VM_GUEST_BIN)/%: $(VM_DIR)/guest/%.c
+	@mkdir -p $(@D)
+	$(CC) $(CSTD) $(WARN) -O2 -o $@ $<
+
 .PHONY: vm-kernels vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug vm-kernel-rt initramfs \
 	vm-kernel-debug-background vmtest vmtest-release vmtest-debug vmtest-one \
 	vm-info
