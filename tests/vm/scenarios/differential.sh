@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp2510
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.1 6.12 debug
 # This project's driver against mainline mcp251x, on what a user sees of
 # both.  The same steps run twice on new chips, once bound to each driver
 # (the one vm-run loaded first, then the other), and each run writes what
@@ -14,10 +14,6 @@
 # restart-ms.  The two records must be equal, except for the keys listed
 # in "differ", where this driver reports more or differently on purpose:
 # docs/differences-from-mcp251x.md says why for each.
-#
-# Not on the debug kernel in make check: what it judges is behaviour, the
-# same on every kernel, and its paths are the other scenarios'; it would
-# cost the debug run minutes.
 #
 # While errors build up, bus time runs 100 times slower than real time (300
 # times on the debug kernel) so that, at 125 kbit/s, either driver sees each
