@@ -168,7 +168,7 @@ static int rxb_recover(struct mcp2510_chip *chip, unsigned int n,
 	u8 tx[2 + MCP2510_FRAME_REGS] = { 0 };
 	u8 rx[2 + MCP2510_FRAME_REGS];
 	const u8 intf_tx[3] = { MCP2510_INSTR_READ, MCP2510_REG_CANINTF };
-	u8 intf_rx[3];
+	u8 intf_rx[3] = { 0 };
 	struct mcp2510_xfer x[2] = {
 		{ tx, rx, 0 },
 		{ intf_tx, intf_rx, sizeof(intf_tx) },
@@ -204,7 +204,7 @@ static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
 	const u8 status_tx[2] = { MCP2510_INSTR_READ_STATUS, 0 };
 	u8 tx[2 + MCP2510_FRAME_REGS] = { 0 };
 	u8 rx[2 + MCP2510_FRAME_REGS];
-	u8 status_rx[2];
+	u8 status_rx[2] = { 0 };
 	struct mcp2510_xfer x[3];
 	struct can_frame cf;
 	unsigned int hdr, nx = 0;
@@ -327,16 +327,17 @@ static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg)
  * enough: EFLG must agree with TEC/REC, read just after it.  When they
  * disagree (a corrupted read, or a counter crossing a limit in between)
  * both are read again; a short burst of corrupted transfers spoils at
- * most two pairs.  Returns 1 when a pair agreed, 0 when none did: then
+ * most two pairs.  @agreed tells whether a pair agreed; when none did,
  * nothing read can be trusted, and taking the last EFLG anyway is how a
  * few garbled bytes used to put a healthy interface bus-off.
  */
 static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
-		      struct can_berr_counter *bec)
+		      struct can_berr_counter *bec, bool *agreed)
 {
 	unsigned int tries = 0;
 	int err;
 
+	*agreed = false;
 	err = errif_clear_reread(chip, ovr, eflg);
 	for (;;) {
 		if (err)
@@ -344,8 +345,10 @@ static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
 		err = mcp2510_berr_counter(chip, bec);
 		if (err)
 			return err;
-		if (mcp2510_error_state_plausible(*eflg, bec))
-			return 1;
+		if (mcp2510_error_state_plausible(*eflg, bec)) {
+			*agreed = true;
+			return 0;
+		}
 		if (++tries == STATE_READ_TRIES)
 			return 0;
 		err = mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
@@ -365,18 +368,19 @@ static int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f)
 			  mcp2510_error_eflg_state(f->eflg) != chip->state);
 	u8 ovr = f->intf & MCP2510_INT_ERR ? f->eflg & EFLG_RXOVR_ALL : 0;
 	struct can_berr_counter bec;
+	bool agreed = false;
 	u8 eflg, late = 0;
 	int err;
 
 	if (!state_due && !(f->intf & MCP2510_INT_MERR))
 		return 0;
 	if (state_due)
-		err = state_read(chip, ovr, &eflg, &bec);
+		err = state_read(chip, ovr, &eflg, &bec, &agreed);
 	else
 		err = mcp2510_berr_counter(chip, &bec);
-	if (err < 0)
+	if (err)
 		return err;
-	if (state_due && err) {
+	if (agreed) {
 		mcp2510_error_state_update(chip, eflg, &bec);
 		/* an overflow since the first read: its ERRIF may be gone */
 		late = eflg & EFLG_RXOVR_ALL;
