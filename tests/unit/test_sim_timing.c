@@ -21,6 +21,14 @@ static const struct sim_spi_timing board = {
 	.irq_latency_ns = 20000,
 };
 
+/* An MCP2510 and an idle SPI bus with the board's timing. */
+static void board_setup(struct sim_chip *chip, struct sim_spi_bus *sb)
+{
+	assert_int_equal(sim_chip_init(chip, SIM_MCP2510, SIMH_OSC_16MHZ), 0);
+	sim_spi_bus_init(sb);
+	sb->timing = board;
+}
+
 static void test_sck_limits(void **state)
 {
 	struct sim_chip c2510, c2515;
@@ -69,9 +77,7 @@ static void test_message_time(void **state)
 	struct sim_spi_msg m;
 
 	(void)state;
-	assert_int_equal(sim_chip_init(&chip, SIM_MCP2510, SIMH_OSC_16MHZ), 0);
-	sim_spi_bus_init(&sb);
-	sb.timing = board;
+	board_setup(&chip, &sb);
 
 	/* overhead once, then setup + clock + hold per period */
 	sim_spi_msg_begin(&sb, &m, 1000);
@@ -104,10 +110,9 @@ static void test_off_takes_no_time(void **state)
 	struct sim_spi_msg m;
 
 	(void)state;
-	assert_int_equal(sim_chip_init(&chip, SIM_MCP2510, SIMH_OSC_16MHZ), 0);
 	sim_spi_bus_init(&sb);
 	assert_false(sb.timing.enabled);
-	sb.timing = board;
+	board_setup(&chip, &sb);
 	sb.timing.enabled = false;
 	sim_spi_msg_begin(&sb, &m, 7000);
 	assert_int_equal(sim_spi_msg_period(&sb, &m, 12345), 7000);
