@@ -5,7 +5,11 @@
 # console for tests/bench/report.py; it asserts nothing about speed.
 #
 # /extra/bench.conf sets FRAMES, RX_BITRATES, TX_BITRATES, CPU_FRAMES,
-# CPU_BITRATE and TIME_SCALE (the value given to mcp2510-sim.ko).
+# CPU_BITRATE and TIME_SCALE (the value given to mcp2510-sim.ko).  For a
+# board profile it also sets PROFILE, SPI_TIME=1, the SPI time switches
+# (SPI_MSG_NS, SPI_CS_SETUP_NS, SPI_CS_HOLD_NS, SPI_CTLR_MAX_HZ,
+# IRQ_LATENCY_NS) and RX_SEARCH=1: then the RX bit rates (ascending) are
+# bisected for the highest one without loss instead of swept.
 #
 # The script stays quiet while a burst runs (one sleep, no polling): under
 # TCG every fork of busybox costs the guest tens of milliseconds, which
@@ -83,7 +87,8 @@ idle() {
 }
 
 # rx WHAT BITRATE COUNT: the phantom floods COUNT frames back to back to
-# can0; WHAT names the measurement.
+# can0; WHAT names the measurement.  Sets RX_LOST to the frames that did
+# not reach the stack.
 rx() {
 	start_at "$2"
 	_secs=$(burst_seconds "$3" "$2")
@@ -95,8 +100,47 @@ rx() {
 	# what the chip holds still reaches the stack after the last frame
 	sleep 0.5
 	cpu_busy
+	_got=$(($(if_stat can0 rx_packets) - rx0))
+	RX_LOST=$(($3 - _got))
 	report "$1" "bitrate=$2 frames=$3 seconds=$_secs $BUSY" \
-		"received=$(($(if_stat can0 rx_packets) - rx0)) $(counters)"
+		"received=$_got $(counters)"
+}
+
+# nth N WORDS...: the Nth of WORDS (from 1).
+nth() {
+	shift "$1"
+	echo "$1"
+}
+
+# rx_search: bisect RX_BITRATES (ascending) for the highest bit rate at
+# which a flood of FRAMES loses nothing, assuming loss only grows with the
+# bit rate.  The highest comes first: on a Raspberry Pi class profile a
+# driver should keep up there, and then one flood settles it.
+rx_search() {
+	set -- $RX_BITRATES
+	_n=$#
+	_lo=0 _hi=$((_n + 1)) _try=$_n
+	while [ $((_hi - _lo)) -gt 1 ]; do
+		rx rx "$(nth "$_try" $RX_BITRATES)" "$FRAMES"
+		if [ "$RX_LOST" -eq 0 ]; then
+			_lo=$_try
+		else
+			_hi=$_try
+		fi
+		_try=$(((_lo + _hi) / 2))
+	done
+}
+
+# spi_time_on: the board profile's SPI and interrupt costs
+# (docs/simulator.md, "SPI time"); they apply to messages that start
+# afterwards, so before the interface comes up.
+spi_time_on() {
+	echo "$SPI_MSG_NS" >"$SIM/spi_msg_ns"
+	echo "$SPI_CS_SETUP_NS" >"$SIM/spi_cs_setup_ns"
+	echo "$SPI_CS_HOLD_NS" >"$SIM/spi_cs_hold_ns"
+	echo "$SPI_CTLR_MAX_HZ" >"$SIM/spi_ctlr_max_hz"
+	echo "$IRQ_LATENCY_NS" >"$SIM/irq_latency_ns"
+	echo 1 >"$SIM/spi_time"
 }
 
 # tx WHAT BITRATE COUNT: cangen sends COUNT frames as fast as can0 takes
@@ -135,20 +179,34 @@ monitor_timing() {
 }
 
 NCPUS=$(grep -c '^cpu[0-9]' /proc/stat)
+timing=
+if [ "${SPI_TIME:-0}" = 1 ]; then
+	spi_time_on
+	timing="profile=$PROFILE spi_msg_ns=$SPI_MSG_NS spi_cs_setup_ns=$SPI_CS_SETUP_NS"
+	timing="$timing spi_cs_hold_ns=$SPI_CS_HOLD_NS spi_ctlr_max_hz=$SPI_CTLR_MAX_HZ"
+	timing="$timing irq_latency_ns=$IRQ_LATENCY_NS"
+fi
 report setup "driver=$VM_DRIVER variant=$VM_VARIANT time_scale=$TIME_SCALE" \
-	"frames=$FRAMES cpu_frames=$CPU_FRAMES cpus=$NCPUS" \
-	"clocksource=$(cat /sys/devices/system/clocksource/clocksource0/current_clocksource)"
+	"frames=$FRAMES cpu_frames=$CPU_FRAMES cpu_bitrate=$CPU_BITRATE cpus=$NCPUS" \
+	"clocksource=$(cat /sys/devices/system/clocksource/clocksource0/current_clocksource)" \
+	"spi_time=$(cat "$SIM/spi_time") clock_stalls=$(cat "$SIM/clock_stalls") $timing"
 can_up can0 "$CPU_BITRATE"
 # CPU and SPI cost at steady state: long bursts at a bit rate every driver
 # keeps up with, and the same time without traffic to subtract.
 idle "$(burst_seconds "$CPU_FRAMES" "$CPU_BITRATE")"
 rx cpu-rx "$CPU_BITRATE" "$CPU_FRAMES"
 tx cpu-tx "$CPU_BITRATE" "$CPU_FRAMES"
-for br in $RX_BITRATES; do
-	rx rx "$br" "$FRAMES"
-done
+if [ "${RX_SEARCH:-0}" = 1 ]; then
+	rx_search
+else
+	for br in $RX_BITRATES; do
+		rx rx "$br" "$FRAMES"
+	done
+fi
 for br in $TX_BITRATES; do
 	tx tx "$br" "$FRAMES"
 done
 ip link set can0 down
-report "done"
+# the bus clock's stalls since the module was loaded: the run is void if
+# one fired (docs/simulator.md, "Time")
+report "done" "clock_stalls=$(cat "$SIM/clock_stalls")"
