@@ -49,6 +49,14 @@ def parse_console(path):
     return found
 
 
+def complete(path):
+    """PATH holds a run that reached its end."""
+    if not os.path.exists(path):
+        return False
+    with open(path, encoding="utf-8", errors="replace") as f:
+        return any(line.startswith("bench: done") for line in f)
+
+
 def per_frame(value, frames):
     return round(value / frames, 2) if frames else None
 
@@ -210,6 +218,10 @@ def collect_profiles(out):
         paths = {(d, c): os.path.join(out, f"{profile}-{d}-{c}.console.log")
                  for d in DRIVERS for c in CHIPS}
         if not any(os.path.exists(p) for p in paths.values()):
+            continue
+        if not all(complete(p) for p in paths.values()):
+            print(f"report: the {profile} profile's runs are incomplete, left out",
+                  file=sys.stderr)
             continue
         entry = {}
         for (driver, chip), path in paths.items():
