@@ -1,28 +1,47 @@
 # tests/bench/bench.mk: make bench, figures rather than tests
 # (docs/performance.md).  Not part of make check: it asserts nothing.
 #
-#   make bench [BENCH_FRAMES=100] [BENCH_CPU_FRAMES=1000]
+#   make bench [BENCH_PROFILES="base pi slow"]
+#              [BENCH_FRAMES=100] [BENCH_CPU_FRAMES=1000]
 #              [BENCH_TIME_SCALE=10] [BENCH_BITRATES="10000 ... 1000000"]
+#              [BENCH_TIMED_FRAMES=100] [BENCH_TIMED_CPU_FRAMES=200]
+#              [BENCH_TIMED_TIME_SCALE=200]
+#              [BENCH_TIMED_RX_BITRATES="50000 ... 1000000"]
+#              [BENCH_TIMED_TX_BITRATES="125000 500000 1000000"]
 #
-# Boots Debian's 6.1 kernel four times (mcp2510.ko and mainline mcp251x,
-# each on a simulated MCP2510 and MCP2515), runs the userspace port's bench
-# on the host, prints a table and writes build/bench/summary.json and the
-# figures and plot of docs/performance.md.
+# Boots Debian's 6.1 kernel four times per profile (mcp2510.ko and
+# mainline mcp251x, each on a simulated MCP2510 and MCP2515): "base" with
+# SPI that takes no time (and the userspace port's bench on the host),
+# "pi" and "slow" with the simulator's SPI time set to a board's costs.
+# Prints tables and writes build/bench/summary.json and the figures and
+# plot of docs/performance.md.
 
 BENCH_OUT := $(BUILD)/bench
+BENCH_PROFILES ?= base pi slow
 BENCH_FRAMES ?= 100
 BENCH_CPU_FRAMES ?= 1000
 BENCH_TIME_SCALE ?= 10
 BENCH_BITRATES ?= 10000 20000 50000 100000 125000 250000 500000 800000 1000000
+BENCH_TIMED_FRAMES ?= 100
+BENCH_TIMED_CPU_FRAMES ?= 200
+BENCH_TIMED_TIME_SCALE ?= 200
+BENCH_TIMED_RX_BITRATES ?= 50000 100000 125000 250000 500000 800000 1000000
+BENCH_TIMED_TX_BITRATES ?= 125000 500000 1000000
 BENCH_PACKAGES := gnuplot-nox python3
 
 .PHONY: bench
 bench: vm-kernel-6.1
 	@$(ENSURE) $(BENCH_PACKAGES)
 	@$(MAKE) --no-print-directory modules-rig userspace VM_KERNELS=6.1
-	@BENCH_OUT=$(BENCH_OUT) BENCH_FRAMES=$(BENCH_FRAMES) \
+	@BENCH_OUT=$(BENCH_OUT) BENCH_PROFILES="$(BENCH_PROFILES)" \
+		BENCH_FRAMES=$(BENCH_FRAMES) \
 		BENCH_CPU_FRAMES=$(BENCH_CPU_FRAMES) \
 		BENCH_TIME_SCALE=$(BENCH_TIME_SCALE) \
 		BENCH_BITRATES="$(BENCH_BITRATES)" \
+		BENCH_TIMED_FRAMES=$(BENCH_TIMED_FRAMES) \
+		BENCH_TIMED_CPU_FRAMES=$(BENCH_TIMED_CPU_FRAMES) \
+		BENCH_TIMED_TIME_SCALE=$(BENCH_TIMED_TIME_SCALE) \
+		BENCH_TIMED_RX_BITRATES="$(BENCH_TIMED_RX_BITRATES)" \
+		BENCH_TIMED_TX_BITRATES="$(BENCH_TIMED_TX_BITRATES)" \
 		BENCH_DOC=$(TOP)/docs/performance.md \
 		$(TOP)/tests/bench/run

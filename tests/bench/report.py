@@ -4,10 +4,13 @@
     report.py OUTDIR [DOC]
 
 Reads OUTDIR/<driver>-<chip>.console.log (the "bench:" lines of
-tests/bench/guest.sh) and OUTDIR/userspace-<chip>.txt (mcp2510ctl bench),
-prints a table, writes OUTDIR/summary.json and the plot's data, draws
-docs/performance.svg with gnuplot and, given DOC, replaces the figures
-between DOC's "bench:begin" and "bench:end" markers.
+tests/bench/guest.sh) and OUTDIR/userspace-<chip>.txt (mcp2510ctl bench)
+of the base profile, and OUTDIR/<profile>-<driver>-<chip>.console.log of
+the board profiles (SPI time on), whichever are there.  Prints tables,
+writes OUTDIR/summary.json and, for base, the plot's data and
+docs/performance.svg (gnuplot); given DOC, replaces the figures between
+DOC's "bench:begin" and "bench:end" markers (base) and between
+"bench-profiles:begin" and "bench-profiles:end" (board profiles).
 """
 import json
 import os
@@ -18,8 +21,11 @@ import sys
 DRIVERS = ("mcp2510", "mcp251x")
 CHIPS = ("mcp2510", "mcp2515")
 KEY_BITRATES = (125000, 500000, 1000000)
+PROFILES = ("pi", "slow")
 BEGIN = "<!-- bench:begin (written by make bench) -->"
 END = "<!-- bench:end -->"
+PROFILES_BEGIN = "<!-- bench-profiles:begin (written by make bench) -->"
+PROFILES_END = "<!-- bench-profiles:end -->"
 
 
 def parse_console(path):
@@ -41,6 +47,14 @@ def parse_console(path):
     if "done" not in found:
         sys.exit(f"report: {path} does not hold a complete run")
     return found
+
+
+def complete(path):
+    """PATH holds a run that reached its end."""
+    if not os.path.exists(path):
+        return False
+    with open(path, encoding="utf-8", errors="replace") as f:
+        return any(line.startswith("bench: done") for line in f)
 
 
 def per_frame(value, frames):
@@ -100,6 +114,124 @@ def driver_figures(log):
     return fig
 
 
+def max_lossless(runs):
+    """The highest flooded bit rate without loss below every lossy one."""
+    lossy = [r["bitrate"] for r in runs if r["received"] < r["frames"]]
+    ok = [r["bitrate"] for r in runs if r["received"] >= r["frames"]
+          and (not lossy or r["bitrate"] < min(lossy))]
+    return int(max(ok)) if ok else 0
+
+
+def spi_us(run, frames_key):
+    frames = run[frames_key]
+    return round(run.get("spi_busy_ns", 0) / frames / 1e3, 2) if frames else None
+
+
+def late_us(run, frames_key):
+    frames = run[frames_key]
+    return round(run.get("spi_late_ns", 0) / frames / 1e3, 2) if frames else None
+
+
+def last_by_bitrate(runs):
+    """A measurement repeated after a clock stall: the last try of each."""
+    return sorted({r["bitrate"]: r for r in runs}.values(), key=lambda r: r["bitrate"])
+
+
+def profile_figures(log):
+    """One driver on one chip with SPI time on (a board profile).  The
+    guest repeats a measurement across which the bus clock stalled; the
+    figures come from the last try of each, and clock_stalls counts the
+    stalls within those."""
+    setup = log["setup"][0]
+    idle = log["idle"][-1]
+    rx = log["cpu-rx"][-1]
+    tx = log["cpu-tx"][-1]
+    floods = last_by_bitrate(log.get("rx", []))
+    bursts = last_by_bitrate(log.get("tx", []))
+    kept = [idle, rx, tx] + floods + bursts
+    boot_stalls = int(log["done"][0].get("clock_stalls", 0) - setup.get("clock_stalls", 0))
+    if all("stalls" in k for k in kept):
+        stalls = int(sum(k["stalls"] for k in kept))
+    else:
+        stalls = boot_stalls
+    tries = sum(len(log.get(w, [])) for w in ("idle", "cpu-rx", "cpu-tx", "rx", "tx"))
+    cpu = cpu_us_per_frame(rx, idle, rx["received"])
+    scale = setup["time_scale"]
+    fig = {
+        "rx_max_lossless_bitrate": max_lossless(floods),
+        "rx_loss": {},
+        "rx_overflows": {},
+        "tx_bus_utilisation": {},
+        "tx_idle_us_per_gap": {},
+        "spi_busy_us_per_rx_frame": spi_us(rx, "frames_rx"),
+        "spi_busy_us_per_tx_frame": spi_us(tx, "frames_tx"),
+        "spi_late_us_per_rx_frame": late_us(rx, "frames_rx"),
+        "spi_late_us_per_tx_frame": late_us(tx, "frames_tx"),
+        "rx_spi_transfers_per_frame": per_frame(rx["spi_transfers"], rx["frames_rx"]),
+        "tx_spi_transfers_per_frame": per_frame(tx["spi_transfers"], tx["frames_tx"]),
+        "cpu_us_per_rx_frame": cpu,
+        "cpu_us_per_rx_frame_over_time_scale": None if cpu is None else round(cpu / scale, 2),
+        # all the guest's busy time in the burst, idle load included: an
+        # upper bound that needs no subtraction of a noisy baseline
+        "cpu_us_per_rx_frame_bound_over_time_scale":
+            per_frame(rx["busy_cs"] * 1e4 / scale, rx["received"]),
+        "cpu_burst_loss": round(1 - rx["received"] / rx["frames"], 4),
+        "clock_stalls": stalls,
+        "clock_stalls_boot": boot_stalls,
+        "measurements_repeated": tries - len(kept),
+        "valid": stalls == 0,
+    }
+    for run in floods:
+        rate = str(int(run["bitrate"]))
+        fig["rx_loss"][rate] = round(1 - run["received"] / run["frames"], 4)
+        fig["rx_overflows"][rate] = int(run["overflows"])
+    for run in bursts:
+        rate = str(int(run["bitrate"]))
+        util, idle_us = tx_utilisation(run)
+        fig["tx_bus_utilisation"][rate] = util
+        fig["tx_idle_us_per_gap"][rate] = idle_us
+    return fig
+
+
+def profile_setup(log):
+    s = log["setup"][0]
+    return {
+        "kernel": "6.1",
+        "time_scale": int(s["time_scale"]),
+        "frames_per_bitrate": int(s["frames"]),
+        "cpu_frames": int(s["cpu_frames"]),
+        "cpu_bitrate": int(s["cpu_bitrate"]),
+        "guest_cpus": int(s["cpus"]),
+        "clocksource": s["clocksource"],
+        "spi_msg_ns": int(s["spi_msg_ns"]),
+        "spi_cs_setup_ns": int(s["spi_cs_setup_ns"]),
+        "spi_cs_hold_ns": int(s["spi_cs_hold_ns"]),
+        "spi_ctlr_max_hz": int(s["spi_ctlr_max_hz"]),
+        "irq_latency_ns": int(s["irq_latency_ns"]),
+    }
+
+
+def collect_profiles(out):
+    """{profile: {driver: {chip: figures}, "setup": ...}} of the complete runs."""
+    found = {}
+    for profile in PROFILES:
+        paths = {(d, c): os.path.join(out, f"{profile}-{d}-{c}.console.log")
+                 for d in DRIVERS for c in CHIPS}
+        if not any(os.path.exists(p) for p in paths.values()):
+            continue
+        if not all(complete(p) for p in paths.values()):
+            print(f"report: the {profile} profile's runs are incomplete, left out",
+                  file=sys.stderr)
+            continue
+        entry = {}
+        for (driver, chip), path in paths.items():
+            log = parse_console(path)
+            entry.setdefault("setup", profile_setup(log))
+            entry.setdefault(driver, {})[chip] = profile_figures(log)
+        found[profile] = entry
+    return found
+
+
 def userspace_figures(path):
     text = open(path, encoding="utf-8").read()
 
@@ -122,6 +254,10 @@ def userspace_figures(path):
         "rx_loss": {},
         "rx_max_lossless_bitrate": None,
     }
+
+
+def have_base(out):
+    return os.path.exists(os.path.join(out, "mcp2510-mcp2510.console.log"))
 
 
 def collect(out):
@@ -215,6 +351,48 @@ def tables(summary):
     return out
 
 
+def khz(rate):
+    return f"{rate // 1000} kbit/s" if rate else "none measured"
+
+
+def profile_tables(profiles):
+    out = []
+    for name, entry in profiles.items():
+        s = entry["setup"]
+        sck = f"{s['spi_ctlr_max_hz'] / 1e6:g} MHz" if s["spi_ctlr_max_hz"] else "the chip's limit"
+        out += [f"**{name}**: SPI message overhead {s['spi_msg_ns'] / 1e3:g} µs, CS setup"
+                f" {s['spi_cs_setup_ns']} ns and hold {s['spi_cs_hold_ns']} ns, SCK at most {sck}"
+                f" (MCP2510 5 MHz, MCP2515 10 MHz), interrupt latency"
+                f" {s['irq_latency_ns'] / 1e3:g} µs; time_scale={s['time_scale']},"
+                f" {s['frames_per_bitrate']} frames per flood or burst, {s['cpu_frames']}"
+                f" frames at {s['cpu_bitrate'] // 1000} kbit/s for the per-frame costs.", ""]
+        rates = sorted({int(r) for d in DRIVERS for c in CHIPS
+                        for r in entry[d][c]["tx_bus_utilisation"]})
+        out += ["| driver | chip | zero loss up to | floods: loss (overflows) | "
+                + " | ".join(f"TX {r // 1000}k" for r in rates)
+                + " | SPI µs per RX frame | SPI µs per TX frame | SPI late µs per RX frame"
+                " | guest CPU µs per RX frame / time_scale (bound) | clock stalls |",
+                "|---|---|---|---|" + "---|" * len(rates) + "---|---|---|---|---|"]
+        for driver in DRIVERS:
+            for chip in CHIPS:
+                f = entry[driver][chip]
+                floods = ", ".join(f"{int(r) // 1000}k {pct(v)} ({f['rx_overflows'][r]})"
+                                   for r, v in sorted(f["rx_loss"].items(), key=lambda x: int(x[0])))
+                util = [pct(f["tx_bus_utilisation"].get(str(r))) for r in rates]
+                stalls = (f"{f['clock_stalls']}" + ("" if f["valid"] else " (run invalid)")
+                          + f"; {f['measurements_repeated']} repeated")
+                out.append(f"| {driver} | {chip} | {khz(f['rx_max_lossless_bitrate'])} | {floods}"
+                           f" | " + " | ".join(util)
+                           + f" | {fmt(f['spi_busy_us_per_rx_frame'])}"
+                           f" | {fmt(f['spi_busy_us_per_tx_frame'])}"
+                           f" | {fmt(f['spi_late_us_per_rx_frame'])}"
+                           f" | {fmt(f['cpu_us_per_rx_frame_over_time_scale'])}"
+                           f" ({fmt(f['cpu_us_per_rx_frame_bound_over_time_scale'])})"
+                           f" | {stalls} |")
+        out.append("")
+    return out
+
+
 def write_plot_data(out, summary):
     path = os.path.join(out, "plot.dat")
     with open(path, "w", encoding="utf-8") as f:
@@ -238,12 +416,12 @@ def plot(out, summary, svg):
                     os.path.join(here, "plot.gp")], check=True)
 
 
-def update_doc(doc, lines):
+def update_doc(doc, lines, begin=BEGIN, end_mark=END):
     text = open(doc, encoding="utf-8").read()
-    start, end = text.find(BEGIN), text.find(END)
+    start, end = text.find(begin), text.find(end_mark)
     if start < 0 or end < start:
-        sys.exit(f"report: {doc} lacks the {BEGIN} ... {END} markers")
-    text = text[:start + len(BEGIN)] + "\n" + "\n".join(lines) + "\n" + text[end:]
+        sys.exit(f"report: {doc} lacks the {begin} ... {end_mark} markers")
+    text = text[:start + len(begin)] + "\n" + "\n".join(lines) + "\n" + text[end:]
     with open(doc, "w", encoding="utf-8") as f:
         f.write(text)
 
@@ -252,19 +430,39 @@ def main():
     if len(sys.argv) not in (2, 3):
         sys.exit(__doc__)
     out = sys.argv[1]
-    summary = collect(out)
+    doc = sys.argv[2] if len(sys.argv) == 3 else None
+    base = have_base(out)
+    summary = collect(out) if base else {}
+    profiles = collect_profiles(out)
+    if not base and not profiles:
+        sys.exit(f"report: no bench logs in {out}")
+    if profiles:
+        summary["profiles"] = profiles
     with open(os.path.join(out, "summary.json"), "w", encoding="utf-8") as f:
         json.dump(summary, f, indent=2, sort_keys=True)
         f.write("\n")
-    lines = tables(summary)
-    print("\n".join(lines))
-    svg = os.path.join(out, "performance.svg")
-    if len(sys.argv) == 3:
-        doc = sys.argv[2]
-        svg = os.path.join(os.path.dirname(os.path.abspath(doc)), "performance.svg")
-        update_doc(doc, lines)
-    plot(out, summary, svg)
-    print(f"bench: {os.path.join(out, 'summary.json')}, {svg}")
+    done = [os.path.join(out, "summary.json")]
+    if base:
+        lines = tables(summary)
+        print("\n".join(lines))
+        svg = os.path.join(out, "performance.svg")
+        if doc:
+            svg = os.path.join(os.path.dirname(os.path.abspath(doc)), "performance.svg")
+            update_doc(doc, lines)
+        plot(out, summary, svg)
+        done.append(svg)
+    if profiles:
+        lines = profile_tables(profiles)
+        print("\n".join(lines))
+        if doc:
+            update_doc(doc, lines, PROFILES_BEGIN, PROFILES_END)
+        for name, entry in profiles.items():
+            for driver in DRIVERS:
+                for chip in CHIPS:
+                    if not entry[driver][chip]["valid"]:
+                        print(f"bench: {name}: {driver} on {chip}: a clock stall fired,"
+                              " the run is invalid", file=sys.stderr)
+    print(f"bench: {', '.join(done)}")
 
 
 if __name__ == "__main__":
