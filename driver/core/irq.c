@@ -297,25 +297,41 @@ static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 #define EFLG_RXOVR_ALL	(MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR)
 
 /*
- * Clear ERRIF, then read the EFLG the state is taken from.  A change after
- * the pass read the flags (TEC crossing 128 while it runs) raises ERRIF
- * again: read in the other order, the clear would take that ERRIF with it
- * and the change would go unseen.  RXnOVR goes first: ERRIF must not be
- * cleared while RXnOVR still stands.
+ * Clear ERRIF, then read the EFLG the state is taken from, then TEC/REC to
+ * check it against, all in one message: under an RX flood every overflow
+ * brings this here, and each message more is time during which both
+ * buffers stay full.  A change after the pass read the flags (TEC
+ * crossing 128 while it runs) raises ERRIF again: read in the other
+ * order, the clear would take that ERRIF with it and the change would go
+ * unseen.  RXnOVR goes first: ERRIF must not be cleared while RXnOVR
+ * still stands.
  */
-static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg)
+static int errif_clear_reread(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
+			      struct can_berr_counter *bec)
 {
+	const u8 ovr_tx[4] = { MCP2510_INSTR_BIT_MODIFY, MCP2510_REG_EFLG,
+			       ovr, 0 };
+	const u8 errif_tx[4] = { MCP2510_INSTR_BIT_MODIFY, MCP2510_REG_CANINTF,
+				 MCP2510_INT_ERR, 0 };
+	const u8 eflg_tx[3] = { MCP2510_INSTR_READ, MCP2510_REG_EFLG };
+	const u8 bec_tx[4] = { MCP2510_INSTR_READ, MCP2510_REG_TEC };
+	u8 eflg_rx[3] = { 0 }, bec_rx[4] = { 0 };
+	struct mcp2510_xfer x[4];
+	unsigned int nx = 0;
 	int err;
 
-	if (ovr) {
-		err = mcp2510_reg_modify(chip, MCP2510_REG_EFLG, ovr, 0);
-		if (err)
-			return err;
-	}
-	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+	if (ovr)
+		x[nx++] = (struct mcp2510_xfer){ ovr_tx, NULL, sizeof(ovr_tx) };
+	x[nx++] = (struct mcp2510_xfer){ errif_tx, NULL, sizeof(errif_tx) };
+	x[nx++] = (struct mcp2510_xfer){ eflg_tx, eflg_rx, sizeof(eflg_tx) };
+	x[nx++] = (struct mcp2510_xfer){ bec_tx, bec_rx, sizeof(bec_tx) };
+	err = mcp2510_xfer_msg(chip, x, nx);
 	if (err)
 		return err;
-	return mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
+	*eflg = eflg_rx[2];
+	bec->txerr = bec_rx[2];
+	bec->rxerr = bec_rx[3];
+	return 0;
 }
 
 /* Reads of EFLG and TEC/REC until they agree, at most. */
@@ -338,11 +354,8 @@ static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
 	int err;
 
 	*agreed = false;
-	err = errif_clear_reread(chip, ovr, eflg);
+	err = errif_clear_reread(chip, ovr, eflg, bec);
 	for (;;) {
-		if (err)
-			return err;
-		err = mcp2510_berr_counter(chip, bec);
 		if (err)
 			return err;
 		if (mcp2510_error_state_plausible(*eflg, bec)) {
@@ -352,6 +365,8 @@ static int state_read(struct mcp2510_chip *chip, u8 ovr, u8 *eflg,
 		if (++tries == STATE_READ_TRIES)
 			return 0;
 		err = mcp2510_reg_read(chip, MCP2510_REG_EFLG, eflg, 1);
+		if (!err)
+			err = mcp2510_berr_counter(chip, bec);
 	}
 }
 

@@ -51,7 +51,7 @@ struct mcp2510_xfer {
 };
 
 /* Most chip-select periods the core puts in one message. */
-#define MCP2510_XFER_MSG_MAX	3
+#define MCP2510_XFER_MSG_MAX	4
 
 struct mcp2510_ops {
 	/*

@@ -192,6 +192,47 @@ static void test_overflow_is_reported(void **state)
 }
 
 /*
+ * Under an RX flood every overflow raises ERRIF, and its handling is time
+ * during which both buffers stay full and the next frame is lost.  The
+ * clear of RXnOVR and ERRIF and the reads of EFLG and TEC/REC it takes go
+ * in one message: three frames on an unserviced chip (both buffers full,
+ * one overflow) cost READ STATUS, the two buffers (each read and released
+ * in one message), the CANINTF/EFLG read that finds ERRIF, and that one
+ * message: five.  The overflow is still reported once and cleared.
+ */
+static void test_overflow_handling_is_one_message(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		struct ch_rig *rig = rx_rig(models[i], true);
+		struct ch_node *node = &rig->node[0];
+		u64 messages;
+
+		/* the periodic full read is not due: READ STATUS starts */
+		ch_service(node, 8, NULL);
+		arrive_unserviced(rig, 0x300, 3);
+		messages = node->messages;
+		ch_service(node, 8, NULL);
+		messages = node->messages - messages;
+		print_message("%s: %llu messages for 2 frames and an overflow\n",
+			      mcp2510_variant_get(models[i])->name,
+			      (unsigned long long)messages);
+		assert_false(ch_int_asserted(node));
+		assert_int_equal(node->ev.rx_count, 2);
+		assert_int_equal(node->core.counters.rx_overflows, 1);
+		assert_false(sim_chip_peek(&node->sim, MCP2510_REG_EFLG) &
+			     (MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR));
+		assert_int_equal(messages, 5);
+		ch_rig_free(rig);
+	}
+}
+
+/*
  * READ STATUS shows no ERRIF.  A host too slow for a flood finds a new
  * frame every time it looks; the periodic CANINTF read must still find
  * the error flag within a few frames.
@@ -469,6 +510,7 @@ int main(void)
 		cmocka_unit_test(test_rx_cost_mcp2515),
 		cmocka_unit_test(test_both_buffers_oldest_first),
 		cmocka_unit_test(test_overflow_is_reported),
+		cmocka_unit_test(test_overflow_handling_is_one_message),
 		cmocka_unit_test(test_error_flags_not_starved_by_rx),
 		cmocka_unit_test(test_level_triggered_one_pass),
 		cmocka_unit_test(test_edge_triggered_loops_until_clear),
