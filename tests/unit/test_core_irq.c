@@ -124,16 +124,18 @@ static void test_rx_cost_mcp2515(void **state)
 	rx_cost(MCP2510_MODEL_MCP2515, 1850, 300);
 }
 
+/* The chips the tests that cover both run on. */
+static const enum mcp2510_model both_models[] = {
+	MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+};
+
 static void test_both_buffers_oldest_first(void **state)
 {
-	static const enum mcp2510_model models[] = {
-		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
-	};
 	unsigned int i;
 
 	(void)state;
-	for (i = 0; i < ARRAY_SIZE(models); i++) {
-		struct ch_rig *rig = rx_rig(models[i], true);
+	for (i = 0; i < ARRAY_SIZE(both_models); i++) {
+		struct ch_rig *rig = rx_rig(both_models[i], true);
 		struct ch_node *node = &rig->node[0];
 		int ret;
 
@@ -202,14 +204,11 @@ static void test_overflow_is_reported(void **state)
  */
 static void test_overflow_handling_is_one_message(void **state)
 {
-	static const enum mcp2510_model models[] = {
-		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
-	};
 	unsigned int i;
 
 	(void)state;
-	for (i = 0; i < ARRAY_SIZE(models); i++) {
-		struct ch_rig *rig = rx_rig(models[i], true);
+	for (i = 0; i < ARRAY_SIZE(both_models); i++) {
+		struct ch_rig *rig = rx_rig(both_models[i], true);
 		struct ch_node *node = &rig->node[0];
 		u64 messages;
 
@@ -220,7 +219,7 @@ static void test_overflow_handling_is_one_message(void **state)
 		ch_service(node, 8, NULL);
 		messages = node->messages - messages;
 		print_message("%s: %llu messages for 2 frames and an overflow\n",
-			      mcp2510_variant_get(models[i])->name,
+			      mcp2510_variant_get(both_models[i])->name,
 			      (unsigned long long)messages);
 		assert_false(ch_int_asserted(node));
 		assert_int_equal(node->ev.rx_count, 2);
@@ -346,16 +345,13 @@ static void test_storm_is_bounded(void **state)
  */
 static void test_transport_error_neither_loses_nor_duplicates(void **state)
 {
-	static const enum mcp2510_model models[] = {
-		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
-	};
 	unsigned int i, fail, reaches, bad = 0;
 
 	(void)state;
-	for (i = 0; i < ARRAY_SIZE(models); i++) {
+	for (i = 0; i < ARRAY_SIZE(both_models); i++) {
 		for (reaches = 0; reaches < 2; reaches++) {
 			for (fail = 1; fail <= 8; fail++) {
-				struct ch_rig *rig = rx_rig(models[i], true);
+				struct ch_rig *rig = rx_rig(both_models[i], true);
 				struct ch_node *node = &rig->node[0];
 
 				arrive_unserviced(rig, 0x500, 2);
