@@ -77,6 +77,15 @@ def tx_utilisation(run):
     return round(per_second / most, 4), round(run["mon_idle_ns"] / (n - 1) / 1e3, 2)
 
 
+def add_tx_figures(fig, bursts):
+    """TX bus utilisation and idle time per gap, by bit rate, into fig."""
+    for run in bursts:
+        rate = str(int(run["bitrate"]))
+        util, idle_us = tx_utilisation(run)
+        fig["tx_bus_utilisation"][rate] = util
+        fig["tx_idle_us_per_gap"][rate] = idle_us
+
+
 def driver_figures(log):
     idle = log["idle"][0]
     rx = log["cpu-rx"][0]
@@ -106,11 +115,7 @@ def driver_figures(log):
             lossless += 1
             fig["rx_max_lossless_bitrate"] = int(run["bitrate"])
     fig.setdefault("rx_max_lossless_bitrate", 0)
-    for run in sorted(log.get("tx", []), key=lambda r: r["bitrate"]):
-        rate = str(int(run["bitrate"]))
-        util, idle_us = tx_utilisation(run)
-        fig["tx_bus_utilisation"][rate] = util
-        fig["tx_idle_us_per_gap"][rate] = idle_us
+    add_tx_figures(fig, sorted(log.get("tx", []), key=lambda r: r["bitrate"]))
     return fig
 
 
@@ -185,11 +190,7 @@ def profile_figures(log):
         rate = str(int(run["bitrate"]))
         fig["rx_loss"][rate] = round(1 - run["received"] / run["frames"], 4)
         fig["rx_overflows"][rate] = int(run["overflows"])
-    for run in bursts:
-        rate = str(int(run["bitrate"]))
-        util, idle_us = tx_utilisation(run)
-        fig["tx_bus_utilisation"][rate] = util
-        fig["tx_idle_us_per_gap"][rate] = idle_us
+    add_tx_figures(fig, bursts)
     return fig
 
 
