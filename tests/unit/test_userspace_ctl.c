@@ -187,7 +187,7 @@ static void test_chip_commands_on_sim(void **state)
 	r = ctl("--device", "sim", "filter", "mask0=7ff", "filter0=123x", NULL);
 	assert_int_equal(r.status, 0);
 	assert_int_equal(lines(r.out), MCP2510_HW_FILTER_SETTINGS);
-	assert_non_null(strstr(r.out, "mask0 7ff\nmask1 0\nfilter0 123x\n"));
+	assert_non_null(strstr(r.out, "mask0 7ff\nmask1 0\nfilter0 00000123x\n"));
 	run_free(&r);
 	r = ctl("--device", "sim", "dump", "--count", "1", "--timeout", "5", NULL);
 	assert_int_equal(r.status, 0);
