@@ -352,6 +352,50 @@ static void test_command_line(void **state)
 			      EXIT_USAGE, "bad frame '--timeout'");
 }
 
+/* --filter (dump's and mcp2510d's) applies on top of the handle's filters. */
+static void test_filter_option_applies(void **state)
+{
+	struct cli_args a = { 0, NULL, 1, false, "mcp2510d", stderr };
+	struct mcp2510_hw_filters f;
+	struct mcp2510_event ev;
+	struct cli_device d;
+	struct can_frame cf;
+	struct mcp2510 *rx, *tx;
+	char line[64];
+	canid_t id;
+
+	(void)state;
+	cli_device_init(&d);
+	d.device = "sim:filters";
+	assert_int_equal(cli_device_add_filter(&d, &a, "mask0=7ff"), 0);
+	assert_int_equal(cli_device_add_filter(&d, &a, "filter0=123"), 0);
+	assert_int_equal(cli_device_add_filter(&d, &a, "filter1=123"), 0);
+	assert_int_equal(cli_device_add_filter(&d, &a, "rxm1=ext"), 0);
+	assert_int_equal(cli_device_add_filter(&d, &a, "filter0=0x5"), -1);
+	rx = cli_device_open(&d, &a, false);
+	assert_non_null(rx);
+	assert_int_equal(cli_device_up(&d, rx, &a), 0);
+	assert_int_equal(mcp2510_get_filters(rx, &f), 0);
+	mcp2510_hw_filters_format(&f, 2, line, sizeof(line));
+	assert_string_equal(line, "filter0 123");
+	d.nfilters = 0;
+	tx = cli_device_open(&d, &a, false);
+	assert_non_null(tx);
+	assert_int_equal(cli_device_up(&d, tx, &a), 0);
+	for (id = 0x121; id <= 0x124; id++) {
+		memset(&cf, 0, sizeof(cf));
+		cf.can_id = id;
+		assert_int_equal(mcp2510_send(tx, &cf, 0), 0);
+	}
+	assert_int_equal(mcp2510_recv(rx, &ev, 100), 0);
+	assert_int_equal(ev.type, MCP2510_EVENT_RX);
+	assert_int_equal(ev.frame.can_id, 0x123);
+	while (!mcp2510_recv(rx, &ev, 50))
+		assert_int_not_equal(ev.type, MCP2510_EVENT_RX);
+	mcp2510_close(tx);
+	mcp2510_close(rx);
+}
+
 static void test_device_failures(void **state)
 {
 	(void)state;
@@ -476,6 +520,7 @@ int main(void)
 		cmocka_unit_test(test_no_chip_no_answer),
 		cmocka_unit_test(test_messages_name_the_cause),
 		cmocka_unit_test(test_command_line),
+		cmocka_unit_test(test_filter_option_applies),
 		cmocka_unit_test_setup_teardown(test_bridge_socket_to_bus,
 						rig_setup, rig_teardown),
 		cmocka_unit_test_setup_teardown(test_bridge_bus_to_socket,

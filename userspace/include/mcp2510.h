@@ -79,7 +79,10 @@ void mcp2510_options_init(struct mcp2510_options *o);
  * mode registers must make sense and a transmit buffer's data byte must
  * read back what is written (its value is restored).  A "sim" chip is
  * new at every open.  ENOTTY: the device is not a spidev device.
- * @o may be NULL for the defaults.
+ * An open that resets keeps the acceptance filters the chip held if they
+ * were programmed since its last reset (RXM or BUKT set: a chip set to
+ * filtered receive modes without rollover cannot be told from a fresh
+ * one and gets the default).  @o may be NULL for the defaults.
  */
 MCP2510_EXPORT
 struct mcp2510 *mcp2510_open(const char *transport,
@@ -134,6 +137,10 @@ struct mcp2510_hw_filters {
 /* The default: every frame accepted. */
 MCP2510_EXPORT
 void mcp2510_hw_filters_default(struct mcp2510_hw_filters *f);
+/*
+ * Stopped only.  On a handle that reset the chip they are written to it
+ * at once, so they stay for the next program that opens it.
+ */
 MCP2510_EXPORT
 int mcp2510_set_filters(struct mcp2510 *h, const struct mcp2510_hw_filters *f);
 MCP2510_EXPORT

@@ -626,7 +626,7 @@ struct mcp2510 *cli_device_open(const struct cli_device *d,
 		return h;
 	err = errno;
 	if (int_line_at_fault(&o, d->device))
-		cli_error(a->err, a->prog, "INT line %s: %s (%s itself opens)",
+		cli_error(a->err, a->prog, "INT line %s: %s (%s itself opens fine)",
 			  o.int_line, strerror(err), d->device);
 	else
 		open_failed(d, a, err);
