@@ -328,6 +328,80 @@ static void test_hardware_filters(void **state)
 	mcp2510_close(b);
 }
 
+/* #17: a missing chip is refused at open, with or without a reset. */
+static void test_missing_chip_refused(void **state)
+{
+	static const char *const miso[] = { "low", "high" };
+	uint8_t regs[MCP2510_REGS_LEN];
+	struct mcp2510_options o;
+	struct mcp2510 *h;
+	size_t m;
+	int no_reset;
+
+	(void)state;
+	mcp2510_options_init(&o);
+	for (m = 0; m < 2; m++) {
+		setenv("MCP2510_SIM_MISO", miso[m], 1);
+		for (no_reset = 0; no_reset <= 1; no_reset++) {
+			o.no_reset = no_reset;
+			errno = 0;
+			h = mcp2510_open("sim", &o);
+			if (h || errno != ENODEV) {
+				unsetenv("MCP2510_SIM_MISO");
+				fail_msg("MISO %s, no_reset %d: handle %p, errno %d",
+					 miso[m], no_reset, (void *)h, errno);
+			}
+		}
+	}
+	assert_int_equal(setenv("MCP2510_SIM_MISO", "sideways", 1), 0);
+	assert_null(mcp2510_open("sim", &o));
+	assert_int_equal(errno, EINVAL);
+	unsetenv("MCP2510_SIM_MISO");
+	/* a chip that is there passes, and the look leaves nothing behind */
+	o.no_reset = true;
+	h = mcp2510_open("sim", &o);
+	assert_non_null(h);
+	assert_int_equal(mcp2510_read_regs(h, regs), 0);
+	assert_int_equal(regs[MCP2510_REG_TXBD(2, 7)], 0);
+	mcp2510_close(h);
+	o.no_reset = false;
+	h = mcp2510_open("sim", &o);
+	assert_non_null(h);
+	assert_int_equal(mcp2510_read_regs(h, regs), 0);
+	assert_int_equal(regs[MCP2510_REG_CNF1], 0);	/* its reset value again */
+	mcp2510_close(h);
+}
+
+/* #17: filters set on a stopped handle are in the chip, for the next user. */
+static void test_filters_reach_the_chip(void **state)
+{
+	struct mcp2510 *h = open_sim("sim", NULL);
+	uint8_t regs[MCP2510_REGS_LEN];
+	struct mcp2510_hw_filters f;
+
+	(void)state;
+	mcp2510_hw_filters_default(&f);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "mask0", "7ff"), 0);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "filter0", "123"), 0);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "filter2", "1234567x"), 0);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "rxm1", "any"), 0);
+	assert_int_equal(mcp2510_set_filters(h, &f), 0);
+	assert_int_equal(mcp2510_read_regs(h, regs), 0);
+	assert_int_equal(regs[MCP2510_REG_RXMSIDH(0)], 0xff);
+	assert_int_equal(regs[MCP2510_REG_RXMSIDL(0)], 0xe0);
+	assert_int_equal(regs[MCP2510_REG_RXFSIDH(0)], 0x24);
+	assert_int_equal(regs[MCP2510_REG_RXFSIDL(0)], 0x60);
+	assert_int_equal(regs[MCP2510_REG_RXFSIDH(2)], 0x09);
+	assert_int_equal(regs[MCP2510_REG_RXFSIDL(2)], 0x0b);
+	assert_int_equal(regs[MCP2510_REG_RXFEID8(2)], 0x45);
+	assert_int_equal(regs[MCP2510_REG_RXFEID0(2)], 0x67);
+	assert_int_equal(regs[MCP2510_REG_RXBCTRL(0)] & MCP2510_RXB0CTRL_BUKT,
+			 MCP2510_RXB0CTRL_BUKT);
+	assert_int_equal(regs[MCP2510_REG_RXBCTRL(1)] & MCP2510_RXBCTRL_RXM_MASK,
+			 MCP2510_RXBCTRL_RXM_MASK);
+	mcp2510_close(h);
+}
+
 static void test_register_dump_and_names(void **state)
 {
 	struct mcp2510 *h = open_up("sim", 0);
@@ -506,6 +580,8 @@ int main(void)
 		cmocka_unit_test(test_full_buffers_nonblock_and_timeout),
 		cmocka_unit_test(test_hardware_filters),
 		cmocka_unit_test(test_register_dump_and_names),
+		cmocka_unit_test(test_missing_chip_refused),
+		cmocka_unit_test(test_filters_reach_the_chip),
 		cmocka_unit_test(test_event_ring_overflow_counted),
 		cmocka_unit_test(test_fd_readable_while_work_waits),
 		cmocka_unit_test(test_bus_outlives_its_handles),

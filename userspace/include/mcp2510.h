@@ -49,6 +49,10 @@ struct mcp2510;
 #define MCP2510_DEFAULT_TX_TIMEOUT_MS	1000
 #define MCP2510_EVENT_RING_SIZE		64u
 #define MCP2510_REGS_LEN		128u
+#define MCP2510_VERSION			"0.1.0"
+/* The oscillators the library accepts (EINVAL otherwise). */
+#define MCP2510_OSC_HZ_MIN		1000000u
+#define MCP2510_OSC_HZ_MAX		25000000u
 
 struct mcp2510_options {
 	const char *variant;		/* "mcp2510" (NULL), "mcp2515", "mcp25625" */
@@ -66,11 +70,19 @@ MCP2510_EXPORT
 void mcp2510_options_init(struct mcp2510_options *o);
 
 /*
- * Open the transport and check that a chip answers (ENODEV if not).  The
- * chip is reset into configuration mode, so a handle starts from a known
- * state, unless no_reset asks to look at a chip that another program
- * drives (register dump, state) without disturbing it; a simulated chip
- * is always new and always reset.  @o may be NULL for the defaults.
+ * Open the transport and check that a chip answers (ENODEV if not: a
+ * MISO line stuck low or high, no power, no oscillator).  The chip is
+ * reset into configuration mode, its reset values checked and a
+ * configuration register written and read back, so a handle starts from
+ * a known state; unless no_reset asks to look at a chip that another
+ * program drives (register dump, state) without disturbing it: then the
+ * mode registers must make sense and a transmit buffer's data byte must
+ * read back what is written (its value is restored).  A "sim" chip is
+ * new at every open.  ENOTTY: the device is not a spidev device.
+ * An open that resets keeps the acceptance filters the chip held if they
+ * were programmed since its last reset (RXM or BUKT set: a chip set to
+ * filtered receive modes without rollover cannot be told from a fresh
+ * one and gets the default).  @o may be NULL for the defaults.
  */
 MCP2510_EXPORT
 struct mcp2510 *mcp2510_open(const char *transport,
@@ -125,6 +137,10 @@ struct mcp2510_hw_filters {
 /* The default: every frame accepted. */
 MCP2510_EXPORT
 void mcp2510_hw_filters_default(struct mcp2510_hw_filters *f);
+/*
+ * Stopped only.  On a handle that reset the chip they are written to it
+ * at once, so they stay for the next program that opens it.
+ */
 MCP2510_EXPORT
 int mcp2510_set_filters(struct mcp2510 *h, const struct mcp2510_hw_filters *f);
 MCP2510_EXPORT

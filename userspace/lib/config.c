@@ -1,16 +1,22 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 /* What a stopped handle can be told: bit timing, control modes, filters. */
+#include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "handle.h"
+#include "mcp2510_core_priv.h"	/* mcp2510_filters_write() */
 
 #define NSEC_PER_SEC	1000000000ull
 
 static const uint32_t supported_ctrlmodes =
 	CAN_CTRLMODE_LOOPBACK | CAN_CTRLMODE_LISTENONLY |
 	CAN_CTRLMODE_3_SAMPLES | CAN_CTRLMODE_BERR_REPORTING;
+
+_Static_assert(MCP2510_OSC_HZ_MIN == MCP2510_OSC_MIN_HZ &&
+	       MCP2510_OSC_HZ_MAX == MCP2510_OSC_MAX_HZ,
+	       "the public oscillator range is the core's");
 
 static int osc_check(uint32_t osc_hz)
 {
@@ -185,7 +191,13 @@ int mcp2510_set_filters(struct mcp2510 *h, const struct mcp2510_hw_filters *f)
 	if (ret)
 		return mcp2510_fail(ret);
 	h->filters = core;
-	return 0;
+	/*
+	 * A chip this handle reset waits in configuration mode: write them
+	 * now, so they stay for whoever opens it next (see mcp2510_open()).
+	 */
+	if (h->reset_done)
+		ret = mcp2510_filters_write(&h->chip);
+	return mcp2510_fail(ret);
 }
 
 int mcp2510_get_filters(const struct mcp2510 *h, struct mcp2510_hw_filters *f)
@@ -251,15 +263,18 @@ int mcp2510_hw_filters_set(struct mcp2510_hw_filters *f, const char *name,
 	return mcp2510_fail(hw_filters_set(f, name, value));
 }
 
+/*
+ * As sysfs writes them, except that a 29-bit id has all eight digits:
+ * an extended 0 reads "00000000x", where sysfs's "0x" looks like the
+ * start of a hexadecimal number.  Both forms parse the same.
+ */
 static int format_id(const char *name, unsigned int i,
 		     const struct mcp2510_hw_id *id, char *buf, size_t len)
 {
-	struct mcp2510_filter_id core;
-	char text[16];
-
-	id_to_core(id, &core);
-	mcp2510_filter_id_format(&core, text);
-	return snprintf(buf, len, "%s%u %s", name, i, text);
+	if (id->ext)
+		return snprintf(buf, len, "%s%u %08" PRIx32 "x", name, i,
+				id->id);
+	return snprintf(buf, len, "%s%u %" PRIx32, name, i, id->id);
 }
 
 static const char *rxm_name(uint8_t rxm)

@@ -25,6 +25,7 @@ struct mcp2510 {
 	uint32_t ctrlmode;
 	struct mcp2510_filters filters;
 	bool running;
+	bool reset_done;		/* this handle reset the chip */
 	enum can_state state;
 	struct can_frame tx_frames[MCP2510_TXB_COUNT];	/* by TX slot */
 	uint64_t rx_frames;

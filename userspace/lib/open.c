@@ -96,20 +96,17 @@ static const struct mcp2510_ops lib_ops = {
 /* "spidev:PATH", "sim" or "sim:NAME". */
 static int transport_open(const char *spec,
 			  const struct mcp2510_transport_params *p,
-			  struct mcp2510_transport **out, bool *is_sim)
+			  struct mcp2510_transport **out)
 {
 	size_t plen = strlen(SPIDEV_PREFIX);
 
-	*is_sim = false;
 	if (!strncmp(spec, SPIDEV_PREFIX, plen) && spec[plen])
 		return mcp2510_spidev_open(spec + plen, p, out);
 	if (!strcmp(spec, SIM_NAME)) {
-		*is_sim = true;
 		return mcp2510_sim_open("", p, out);
 	}
 	if (!strncmp(spec, SIM_NAME ":", strlen(SIM_NAME ":")) &&
 	    spec[strlen(SIM_NAME ":")]) {
-		*is_sim = true;
 		return mcp2510_sim_open(spec + strlen(SIM_NAME ":"), p, out);
 	}
 	return -EINVAL;
@@ -140,16 +137,155 @@ static int pollset_open(struct mcp2510 *h)
 	return ret;
 }
 
-/* Without a reset: a chip that answers does not read as all ones. */
-static int chip_answers(struct mcp2510 *h)
+/*
+ * Write @a then @b to @reg and read each back: a MISO stuck low or high,
+ * or one that echoes MOSI, cannot return both.  0 or -ENODEV.
+ */
+static int readback_check(struct mcp2510 *h, u8 reg, u8 a, u8 b)
 {
-	u8 canstat;
+	const u8 pattern[2] = { a, b };
+	unsigned int i;
+	u8 got;
 	int ret;
 
-	ret = mcp2510_reg_read(&h->chip, MCP2510_REG_CANSTAT, &canstat, 1);
+	for (i = 0; i < ARRAY_SIZE(pattern); i++) {
+		ret = mcp2510_reg_write(&h->chip, reg, &pattern[i], 1);
+		if (!ret)
+			ret = mcp2510_reg_read(&h->chip, reg, &got, 1);
+		if (ret)
+			return ret;
+		if (got != pattern[i])
+			return -ENODEV;
+	}
+	return 0;
+}
+
+/*
+ * After a reset: the core checked the reset values, as the kernel
+ * driver's probe does; a configuration register (writable now, in
+ * configuration mode) must also keep what is written to it.  CNF1 goes
+ * back to its reset value.
+ */
+static int chip_reset_check(struct mcp2510 *h)
+{
+	static const u8 cnf1_reset;
+	int ret;
+
+	ret = mcp2510_hw_reset(&h->chip);
 	if (ret)
 		return ret;
-	return canstat == 0xff ? -ENODEV : 0;
+	ret = readback_check(h, MCP2510_REG_CNF1, 0xa5, 0x5a);
+	if (ret)
+		return ret;
+	return mcp2510_reg_write(&h->chip, MCP2510_REG_CNF1, &cnf1_reset, 1);
+}
+
+/*
+ * Without a reset, disturbing nothing: the mode registers must hold an
+ * operating mode a chip can be in, and the last data byte of TXB2 must
+ * keep what is written to it (its old value is put back).  A buffer
+ * with TXREQ set is locked, but a set bit next to clear ones already
+ * tells a chip from a stuck line.
+ */
+static int chip_answers(struct mcp2510 *h)
+{
+	const u8 reg = MCP2510_REG_TXBD(2, 7);
+	u8 mode[2], ctrl, old;	/* CANSTAT, CANCTRL */
+	int ret;
+
+	ret = mcp2510_reg_read(&h->chip, MCP2510_REG_CANSTAT, mode, 2);
+	if (ret)
+		return ret;
+	if (mode[0] == 0xff || mode[1] == 0xff ||
+	    FIELD_GET(MCP2510_CANSTAT_OPMOD_MASK, mode[0]) > MCP2510_MODE_CONFIG)
+		return -ENODEV;
+	ret = mcp2510_reg_read(&h->chip, MCP2510_REG_TXBCTRL(2), &ctrl, 1);
+	if (ret)
+		return ret;
+	if (ctrl & MCP2510_TXBCTRL_TXREQ)
+		return ctrl == 0xff ? -ENODEV : 0;
+	ret = mcp2510_reg_read(&h->chip, reg, &old, 1);
+	if (!ret)
+		ret = readback_check(h, reg, 0xa5, 0x5a);
+	if (ret)
+		return ret;
+	return mcp2510_reg_write(&h->chip, reg, &old, 1);
+}
+
+/* One mask or filter from its four registers, as the core encodes it. */
+static void filter_id_decode(const u8 *r, bool is_mask,
+			     struct mcp2510_filter_id *id)
+{
+	u32 sid = (u32)r[MCP2510_ID_SIDH] << MCP2510_SID_SHIFT_SIDH |
+		  (r[MCP2510_ID_SIDL] & MCP2510_SIDL_SID_MASK) >>
+		  MCP2510_SID_SHIFT_SIDL;
+	u32 eid = (u32)(r[MCP2510_ID_SIDL] & MCP2510_SIDL_EID_MASK) << 16 |
+		  (u32)r[MCP2510_ID_EID8] << 8 | r[MCP2510_ID_EID0];
+
+	/* a mask has no EXIDE: one with EID bits masks extended ids */
+	id->ext = is_mask ? eid != 0 : r[MCP2510_ID_SIDL] & MCP2510_SIDL_EXIDE;
+	id->id = id->ext ? sid << MCP2510_EID_BITS | eid : sid;
+}
+
+/*
+ * The acceptance filters the chip holds, if someone programmed them
+ * since its last reset (the filter command, another program): RESET
+ * clears RXM and BUKT in RXBnCTRL and every writer of filters sets at
+ * least one of them (rollover is on by default), so a chip with them all
+ * clear has filters nobody chose, say the power-on garbage of the
+ * filter registers.  Read before the reset that clears RXBnCTRL; 1 when
+ * @f holds programmed filters, 0 when not.
+ */
+static int chip_filters(struct mcp2510 *h, struct mcp2510_filters *f)
+{
+	u8 regs[MCP2510_REG_RXM(MCP2510_MASK_COUNT)], ctrl[2];
+	unsigned int i;
+	int ret;
+
+	ret = mcp2510_reg_read(&h->chip, MCP2510_REG_RXBCTRL(0), &ctrl[0], 1);
+	if (!ret)
+		ret = mcp2510_reg_read(&h->chip, MCP2510_REG_RXBCTRL(1),
+				       &ctrl[1], 1);
+	if (ret)
+		return ret;
+	/* a missing chip reads all ones; the reset check will say so */
+	if (ctrl[0] == 0xff ||
+	    !((ctrl[0] & (MCP2510_RXBCTRL_RXM_MASK | MCP2510_RXB0CTRL_BUKT)) |
+	      (ctrl[1] & MCP2510_RXBCTRL_RXM_MASK)))
+		return 0;
+	ret = mcp2510_reg_read(&h->chip, 0, regs, sizeof(regs));
+	if (ret)
+		return ret;
+	for (i = 0; i < MCP2510_FILTER_COUNT; i++)
+		filter_id_decode(regs + MCP2510_REG_RXF(i), false,
+				 &f->filter[i]);
+	for (i = 0; i < MCP2510_MASK_COUNT; i++)
+		filter_id_decode(regs + MCP2510_REG_RXM(i), true, &f->mask[i]);
+	f->rxm[0] = FIELD_GET(MCP2510_RXBCTRL_RXM_MASK, ctrl[0]);
+	f->rxm[1] = FIELD_GET(MCP2510_RXBCTRL_RXM_MASK, ctrl[1]);
+	f->rollover = ctrl[0] & MCP2510_RXB0CTRL_BUKT;
+	return mcp2510_filters_check(f) ? 0 : 1;
+}
+
+/* Reset and check the chip, keeping the filters it was given. */
+static int chip_reset_keep_filters(struct mcp2510 *h)
+{
+	struct mcp2510_filters f;
+	int kept, ret;
+
+	kept = chip_filters(h, &f);
+	if (kept < 0)
+		return kept;
+	ret = chip_reset_check(h);
+	if (ret)
+		return ret;
+	h->reset_done = true;
+	if (!kept)
+		return 0;
+	ret = mcp2510_filters_apply(&h->chip, &f);
+	if (!ret)
+		h->filters = f;
+	return ret;
 }
 
 static int handle_setup(struct mcp2510 *h, const char *spec,
@@ -164,7 +300,6 @@ static int handle_setup(struct mcp2510 *h, const char *spec,
 		.osc_hz = o->osc_hz,
 		.mcp2515 = v->has_buffer_instrs,
 	};
-	bool is_sim;
 	int ret;
 
 	ret = mcp2510_init(&h->chip, v, o->osc_hz, &lib_ops,
@@ -173,7 +308,7 @@ static int handle_setup(struct mcp2510 *h, const char *spec,
 		return ret;
 	/* The library drains every flag per pass, as an edge input needs. */
 	h->chip.irq_edge = true;
-	ret = transport_open(spec, &p, &h->transport, &is_sim);
+	ret = transport_open(spec, &p, &h->transport);
 	if (ret)
 		return ret;
 	if (h->transport->ops->set_irq_hook)
@@ -182,9 +317,10 @@ static int handle_setup(struct mcp2510 *h, const char *spec,
 	ret = pollset_open(h);
 	if (ret)
 		return ret;
-	if (o->no_reset && !is_sim)
+	/* a simulated chip is new, so looking without a reset is safe too */
+	if (o->no_reset)
 		return chip_answers(h);
-	return mcp2510_hw_reset(&h->chip);
+	return chip_reset_keep_filters(h);
 }
 
 struct mcp2510 *mcp2510_open(const char *transport,
@@ -246,6 +382,7 @@ int mcp2510_reset(struct mcp2510 *h)
 	if (h->running)
 		mcp2510_down(h);
 	ret = mcp2510_hw_reset(&h->chip);
+	h->reset_done = !ret;
 	h->running = false;
 	h->state = CAN_STATE_STOPPED;
 	return mcp2510_fail(ret);

@@ -26,6 +26,11 @@
  * when CS rises at the modelled time, at the handle's spi_hz clamped to
  * the chip's limit, and an interrupt reaches its handler irq_latency_ns
  * after INT fell.
+ *
+ * MCP2510_SIM_MISO=low or =high, read when a handle takes its chip,
+ * sticks that chip's MISO line at 0x00 or 0xff (the model's spi_corrupt
+ * fault), as a chip that is not there or not powered reads: for trying
+ * how the library and the tools report a missing chip.
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -43,6 +48,7 @@
 #define SIM_LOOK_NS		100000000ull	/* what a wait of 0 may run */
 #define NS_PER_MS		1000000ull
 #define SPI_TIME_ENV		"MCP2510_SIM_SPI_TIME"
+#define MISO_ENV		"MCP2510_SIM_MISO"
 
 struct sim_transport;
 
@@ -358,6 +364,24 @@ static int shared_bus_get(const char *name, struct shared_bus **out)
 	return 0;
 }
 
+/* MCP2510_SIM_MISO: 0, or -EINVAL for a value other than low or high. */
+static int miso_from_env(struct sim_chip *chip)
+{
+	const char *p = getenv(MISO_ENV);
+	struct sim_chip_faults *f = sim_chip_faults(chip);
+
+	/* a chip unplugged and taken again must not keep a past fault */
+	f->spi_corrupt = 0;
+	if (!p || !*p)
+		return 0;
+	if (strcmp(p, "low") && strcmp(p, "high"))
+		return -EINVAL;
+	f->spi_corrupt = SIM_CORRUPT_FOREVER;
+	f->spi_corrupt_kind = SIM_CORRUPT_FIXED;
+	f->spi_corrupt_byte = strcmp(p, "low") ? 0xff : 0x00;
+	return 0;
+}
+
 /* A chip for a new user: a fresh one, or an unplugged one of the same kind. */
 static int shared_bus_take_chip(struct shared_bus *sb,
 				const struct mcp2510_transport_params *p,
@@ -391,6 +415,9 @@ static int shared_bus_take_chip(struct shared_bus *sb,
 	sb->nchips++;
 
 out_take:
+	ret = miso_from_env(chip);
+	if (ret)
+		return ret;
 	sb->users[i] = s;
 	s->chip = chip;
 	s->slot = i;
@@ -420,6 +447,8 @@ int mcp2510_sim_open(const char *bus_name,
 	ret = shared_bus_take_chip(s->shared, p, s);
 	if (ret)
 		goto out_put_bus;
+	/* like a board powered long ago: past the start-up, even unreset */
+	sim_bus_advance(&s->shared->bus, sim_chip_startup_ns(s->chip));
 	update_fds(s->shared);
 	*out = &s->base;
 	return 0;

@@ -179,10 +179,11 @@ static int spidev_configure(int fd, const struct mcp2510_transport_params *p)
 	uint8_t bits = 8;
 	uint32_t speed = p->spi_hz;
 
+	/* ENOTTY passes through: the caller can say "not a spidev device" */
 	if (ioctl(fd, SPI_IOC_WR_MODE, &mode) < 0 ||
 	    ioctl(fd, SPI_IOC_WR_BITS_PER_WORD, &bits) < 0 ||
 	    ioctl(fd, SPI_IOC_WR_MAX_SPEED_HZ, &speed) < 0)
-		return -EIO;
+		return errno == ENOTTY ? -ENOTTY : -EIO;
 	return 0;
 }
 

@@ -27,7 +27,8 @@ struct cli_option {
 struct cli_args {
 	int argc;
 	char **argv;
-	int next;		/* index of the next argument to look at */
+	int next;		/* 1 to start; 0 while getopt_long scans; after
+				 * "--", index of the next argument */
 	bool no_more_options;	/* after "--" */
 	const char *prog;
 	FILE *err;
@@ -36,20 +37,25 @@ struct cli_args {
 enum cli_kind { CLI_END, CLI_OPTION, CLI_ARG, CLI_ERROR };
 
 /*
- * The next option (its id and value) or positional argument, from the
- * NULL-terminated list of NULL-terminated option tables.  "--name value",
- * "--name=value", "-h" for "--help" and "--" are understood.  CLI_ERROR
- * has already been reported on @a->err.
+ * The next option (its id and value) or positional argument, in command
+ * line order, from the NULL-terminated list of NULL-terminated option
+ * tables (the same list at every call), through getopt_long: "--name
+ * value", "--name=value", unambiguous abbreviations, "--" and the short
+ * forms -h -V -d -i -c -b -n -t of help, version, device, int, clock,
+ * bitrate, count and timeout, where a table has them ("-d sim", "-dsim").  The first call starts the scan
+ * at argv[1].  CLI_ERROR has already been reported on @a->err.
  */
 enum cli_kind cli_next(struct cli_args *a,
 		       const struct cli_option *const *tables,
 		       int *id, const char **value);
+/* The table entry of the last CLI_OPTION cli_next() returned. */
+const struct cli_option *cli_last_option(void);
 
 /* Report "PROG: MESSAGE" as one line on @err. */
 void cli_error(FILE *err, const char *prog, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
-/* Decimal with an optional k/M suffix ("500k", "16M"); -1 if bad. */
+/* Decimal with an optional k/M suffix and Hz ("500k", "16M", "16MHz"); -1 if bad. */
 int cli_u32(const char *s, uint32_t *out);
 /* A non-negative int, or -1 when @allow_forever and @s is "-1". */
 int cli_int(const char *s, bool allow_forever, int *out);
@@ -73,6 +79,7 @@ enum cli_device_opt {
 	CLI_OPT_TRIPLE,
 	CLI_OPT_ONE_SHOT,
 	CLI_OPT_BERR,
+	CLI_OPT_VERSION,
 	CLI_OPT_FIRST_OWN = 100,	/* ids of a tool's own options */
 };
 
@@ -80,8 +87,14 @@ extern const struct cli_option cli_device_options[];
 /* The device options' lines for a --help text. */
 extern const char cli_device_help[];
 
+#define CLI_MAX_FILTERS	16
+
 struct cli_device {
 	const char *device;		/* transport string */
+	char device_buf[256];		/* "spidev:" + a bare path */
+	/* --filter NAME=VALUE, applied in order on top of the chip's */
+	const char *filters[CLI_MAX_FILTERS];
+	unsigned int nfilters;
 	struct mcp2510_options opts;
 	uint32_t bitrate;
 	uint32_t sample_point;
@@ -92,10 +105,38 @@ void cli_device_init(struct cli_device *d);
 /* Take a device option's value; -1 after reporting a bad one. */
 int cli_device_set(struct cli_device *d, struct cli_args *a, int id,
 		   const char *value);
+/*
+ * After the last option: what options say only together (--one-shot and
+ * the variant, --spi-hz and the variant's SPI clock limit).  -1 after
+ * reporting, for exit status EXIT_USAGE.
+ */
+int cli_device_check(const struct cli_device *d, struct cli_args *a);
+/* Print "PROG VERSION". */
+void cli_version(FILE *out, const char *prog);
+/*
+ * "NAME=VALUE" of the filter command and --filter into @f, or -1 after
+ * saying what is wrong with it.
+ */
+int cli_filter_assign(struct cli_args *a, struct mcp2510_hw_filters *f,
+		      const char *arg);
+/* Take a --filter NAME=VALUE for cli_device_up(), or say what is wrong. */
+int cli_device_add_filter(struct cli_device *d, struct cli_args *a,
+			  const char *arg);
 /* Open the chip, or report why not. */
 struct mcp2510 *cli_device_open(const struct cli_device *d,
 				struct cli_args *a, bool no_reset);
-/* Program bit rate and control modes and join the bus, or report. */
+/*
+ * mcp2510_bittiming_for(), saying why not (the oscillator, or which data
+ * sheet rule a sample point breaks), and warning when the sample point
+ * asked for could not be made exactly.  0 or -1.
+ */
+int cli_bittiming(struct cli_args *a, uint32_t osc_hz, uint32_t bitrate,
+		  uint32_t sp, struct can_bittiming *bt, uint8_t cnf[3]);
+/*
+ * Apply the --filter settings on top of the filters the handle holds
+ * (those the chip kept, see mcp2510_open()), program bit rate and
+ * control modes and join the bus, or report.
+ */
 int cli_device_up(const struct cli_device *d, struct mcp2510 *h,
 		  struct cli_args *a);
 /* Report a failed library call: "PROG: WHAT: strerror(errno)". */

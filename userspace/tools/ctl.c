@@ -22,11 +22,13 @@ static void usage(struct ctl *c)
 		"Drive an MCP2510/MCP2515/MCP25625 CAN controller from userspace,\n"
 		"on spidev or simulated.\n\nOptions (before or after COMMAND):\n");
 	fputs(cli_device_help, c->out);
-	fputs("  -h, --help          this text; COMMAND --help for a command's\n\n"
+	fputs("  -h, --help          this text; COMMAND --help (or help COMMAND)\n"
+	      "                      for a command's\n\n"
 	      "Commands:\n", c->out);
 	for (i = 0; i < NCOMMANDS; i++)
 		fprintf(c->out, "  %-10s  %s\n", commands[i]->name,
 			commands[i]->summary);
+	fprintf(c->out, "  %-10s  %s\n", "help", "this text, or help COMMAND for a command's");
 	fputs("\nTry it without hardware:\n"
 	      "  mcp2510ctl --device sim exchange\n"
 	      "  mcp2510ctl --device sim selftest\n"
@@ -94,89 +96,156 @@ static int take_positional(struct ctl *c, const struct ctl_command *cmd,
 	return 0;
 }
 
-static int take_option(struct ctl *c, const struct ctl_command *cmd,
-		       ctl_option_fn fn, void *ctx, int id, const char *value)
+static const struct cli_option *own_option(const struct cli_option *own,
+					   const char *name)
 {
-	if (id == CLI_OPT_HELP) {
+	for (; own && own->name; own++)
+		if (!strcmp(own->name, name))
+			return own;
+	return NULL;
+}
+
+/* 1 after --help, 0, or -1 after reporting. */
+static int take_option(struct ctl *c, const struct ctl_command *cmd,
+		       const struct cli_option *own, ctl_option_fn fn,
+		       void *ctx, const struct ctl_item *it)
+{
+	const struct cli_option *o;
+
+	if (it->opt->id == CLI_OPT_HELP) {
 		fputs(cmd->help, c->out);
 		return 1;
 	}
-	if (id < CLI_OPT_FIRST_OWN)
-		return cli_device_set(&c->dev, &c->args, id, value);
-	return fn(c, ctx, id, value);
+	if (it->opt->id < CLI_OPT_FIRST_OWN)
+		return cli_device_set(&c->dev, &c->args, it->opt->id, it->value);
+	o = own_option(own, it->opt->name);
+	if (!o) {
+		cli_error(c->args.err, c->args.prog,
+			  "%s takes no --%s (see %s --help)", cmd->name,
+			  it->opt->name, cmd->name);
+		return -1;
+	}
+	return fn(c, ctx, o->id, it->value);
 }
 
 int ctl_parse(struct ctl *c, const struct ctl_command *cmd,
 	      const struct cli_option *own, ctl_option_fn fn, void *ctx,
 	      int min_pos, int max_pos, bool *done)
 {
-	const struct cli_option *const tables[] = { cli_device_options, own, NULL };
-	const char *value;
-	enum cli_kind kind;
-	int id, ret;
+	int i, ret;
 
-	*done = false;
+	*done = true;
 	if (max_pos > CTL_MAX_ARGS)
 		max_pos = CTL_MAX_ARGS;
-	while ((kind = cli_next(&c->args, tables,
-				&id, &value)) != CLI_END) {
-		if (kind == CLI_ERROR)
-			ret = -1;
-		else if (kind == CLI_ARG)
-			ret = take_positional(c, cmd, value, max_pos);
+	for (i = 0; i < c->nitems; i++) {
+		const struct ctl_item *it = &c->items[i];
+
+		if (it->opt)
+			ret = take_option(c, cmd, own, fn, ctx, it);
 		else
-			ret = take_option(c, cmd, fn, ctx, id, value);
-		if (ret) {
-			*done = true;
+			ret = take_positional(c, cmd, it->value, max_pos);
+		if (ret)
 			return ret > 0 ? 0 : EXIT_USAGE;
-		}
 	}
+	if (cli_device_check(&c->dev, &c->args))
+		return EXIT_USAGE;
 	if (cmd->needs_device && !c->dev.device) {
 		cli_error(c->args.err, c->args.prog,
 			  "%s: no --device given (spidev:/dev/spidevB.C or sim)",
 			  cmd->name);
-		*done = true;
 		return EXIT_USAGE;
 	}
 	if (c->npos < min_pos) {
 		cli_error(c->args.err, c->args.prog, "%s: missing argument (see %s --help)",
 			  cmd->name, cmd->name);
-		*done = true;
 		return EXIT_USAGE;
 	}
+	*done = false;
 	return 0;
 }
 
-/* Device options before the command; returns the command's name. */
-static int parse_global(struct ctl *c, const char **name)
+/* Every option any command takes, so each may come before the command. */
+static void all_tables(const struct cli_option **tables)
 {
-	const struct cli_option *const tables[] = { cli_device_options, NULL };
+	size_t i, n = 0;
+
+	tables[n++] = cli_device_options;
+	for (i = 0; i < NCOMMANDS; i++)
+		if (commands[i]->options)
+			tables[n++] = commands[i]->options;
+	tables[n] = NULL;
+}
+
+/*
+ * The whole command line into c->items; the first argument is the
+ * command.  Returns 0, or an exit status after --version or an error.
+ */
+static int scan(struct ctl *c, const char **name, bool *version)
+{
+	const struct cli_option *tables[NCOMMANDS + 2];
 	const char *value;
 	enum cli_kind kind;
 	int id;
 
+	all_tables(tables);
 	while ((kind = cli_next(&c->args, tables, &id, &value)) != CLI_END) {
 		if (kind == CLI_ERROR)
 			return EXIT_USAGE;
-		if (kind == CLI_ARG) {
+		if (kind == CLI_ARG && !*name) {
 			*name = value;
-			return 0;
+			continue;
 		}
-		if (id == CLI_OPT_HELP) {
-			usage(c);
-			return -1;
+		if (kind == CLI_OPTION && id == CLI_OPT_VERSION) {
+			*version = true;
+			continue;
 		}
-		if (cli_device_set(&c->dev, &c->args, id, value))
+		if (c->nitems == CTL_MAX_ITEMS) {
+			cli_error(c->args.err, c->args.prog, "too many arguments");
 			return EXIT_USAGE;
+		}
+		c->items[c->nitems].opt = kind == CLI_OPTION ? cli_last_option() : NULL;
+		c->items[c->nitems++].value = value;
 	}
-	cli_error(c->args.err, c->args.prog, "no command given (try --help)");
-	return EXIT_USAGE;
+	return 0;
+}
+
+static bool asks_help(const struct ctl *c)
+{
+	int i;
+
+	for (i = 0; i < c->nitems; i++)
+		if (c->items[i].opt && c->items[i].opt->id == CLI_OPT_HELP)
+			return true;
+	return false;
+}
+
+/* "help" and "help COMMAND". */
+static int help_command(struct ctl *c)
+{
+	const struct ctl_command *cmd;
+	int i;
+
+	for (i = 0; i < c->nitems; i++) {
+		if (c->items[i].opt)
+			continue;
+		cmd = find_command(c->items[i].value);
+		if (!cmd) {
+			cli_error(c->args.err, c->args.prog,
+				  "help: unknown command '%s'", c->items[i].value);
+			return EXIT_USAGE;
+		}
+		fputs(cmd->help, c->out);
+		return 0;
+	}
+	usage(c);
+	return 0;
 }
 
 int ctl_main(int argc, char **argv, FILE *out, FILE *err)
 {
 	const struct ctl_command *cmd;
 	const char *name = NULL;
+	bool version = false;
 	struct ctl c;
 	int ret;
 
@@ -188,9 +257,19 @@ int ctl_main(int argc, char **argv, FILE *out, FILE *err)
 	c.args.prog = "mcp2510ctl";
 	c.args.err = err;
 	cli_device_init(&c.dev);
-	ret = parse_global(&c, &name);
+	ret = scan(&c, &name, &version);
 	if (ret)
-		return ret < 0 ? 0 : ret;
+		return ret;
+	if (version) {
+		cli_version(out, c.args.prog);
+		return 0;
+	}
+	if (!name || !strcmp(name, "help")) {
+		if (name || asks_help(&c))
+			return help_command(&c);
+		cli_error(err, c.args.prog, "no command given (try --help)");
+		return EXIT_USAGE;
+	}
 	cmd = find_command(name);
 	if (!cmd) {
 		cli_error(err, c.args.prog, "unknown command '%s' (try --help)", name);

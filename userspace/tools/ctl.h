@@ -6,11 +6,20 @@
 #include "cli.h"
 
 #define CTL_MAX_ARGS	32
+#define CTL_MAX_ITEMS	96
+
+/* An option (opt set) or an argument after the command, in order. */
+struct ctl_item {
+	const struct cli_option *opt;
+	const char *value;
+};
 
 struct ctl {
 	FILE *out;
 	struct cli_args args;
 	struct cli_device dev;
+	struct ctl_item items[CTL_MAX_ITEMS];	/* the whole command line */
+	int nitems;
 	const char *pos[CTL_MAX_ARGS];	/* positional arguments */
 	int npos;
 };
@@ -27,13 +36,15 @@ struct ctl_command {
 	const char *summary;		/* one line for the command list */
 	const char *help;		/* the whole "CMD --help" text */
 	bool needs_device;		/* --device is required */
+	const struct cli_option *options;	/* its own, or NULL */
 	int (*run)(struct ctl *c);
 };
 
 /*
- * Parse the rest of the command line: device options, @own options
- * (handled by @fn) and between @min_pos and @max_pos positional arguments
- * into c->pos.  Returns 0, or an exit status to end with: 0 after --help,
+ * Take the command line, options before or after the command alike:
+ * device options, @own options (handled by @fn; @own is the command's
+ * .options) and between @min_pos and @max_pos positional arguments into
+ * c->pos.  Returns 0, or an exit status to end with: 0 after --help,
  * EXIT_USAGE after an error it reported.
  */
 int ctl_parse(struct ctl *c, const struct ctl_command *cmd,

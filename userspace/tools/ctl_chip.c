@@ -143,13 +143,9 @@ static int bittiming_run(struct ctl *c)
 		ctl_bad(c, "bit rate", c->pos[0]);
 		return EXIT_USAGE;
 	}
-	if (mcp2510_bittiming_for(c->dev.opts.osc_hz, c->dev.bitrate,
-				  c->dev.sample_point, &bt, cnf)) {
-		cli_error(c->args.err, c->args.prog,
-			  "bit rate %" PRIu32 " cannot be made from a %" PRIu32 " Hz oscillator",
-			  c->dev.bitrate, c->dev.opts.osc_hz);
+	if (cli_bittiming(&c->args, c->dev.opts.osc_hz, c->dev.bitrate,
+			  c->dev.sample_point, &bt, cnf))
 		return EXIT_FAIL;
-	}
 	fprintf(c->out,
 		"bitrate %u sample-point %.3f tq %u prop-seg %u phase-seg1 %u phase-seg2 %u sjw %u brp %u\n",
 		bt.bitrate, bt.sample_point / 1000.0, bt.tq, bt.prop_seg,
@@ -213,22 +209,6 @@ const struct ctl_command ctl_regs = {
 
 /* ---- filter ---- */
 
-static int filter_assign(struct ctl *c, struct mcp2510_hw_filters *f,
-			 const char *arg)
-{
-	char name[16];
-	const char *eq = strchr(arg, '=');
-	size_t n = eq ? (size_t)(eq - arg) : 0;
-
-	if (!eq || !n || n >= sizeof(name))
-		return ctl_bad(c, "filter setting (NAME=VALUE)", arg);
-	memcpy(name, arg, n);
-	name[n] = '\0';
-	if (mcp2510_hw_filters_set(f, name, eq + 1))
-		return ctl_bad(c, "filter setting", arg);
-	return 0;
-}
-
 static void filters_print(struct ctl *c, const struct mcp2510_hw_filters *f)
 {
 	char line[64];
@@ -262,7 +242,7 @@ static int filter_run(struct ctl *c)
 		return ret;
 	mcp2510_hw_filters_default(&f);
 	for (i = 0; i < c->npos; i++)
-		if (filter_assign(c, &f, c->pos[i]))
+		if (cli_filter_assign(&c->args, &f, c->pos[i]))
 			return EXIT_USAGE;
 	return ctl_on_chip(c, cli_device_open(&c->dev, &c->args, false),
 			   filters_apply, &f);
@@ -274,13 +254,16 @@ const struct ctl_command ctl_filter = {
 	.help =
 "Usage: mcp2510ctl --device DEV filter [NAME=VALUE ...]\n"
 "Program the acceptance filters, starting from the default (accept all),\n"
-"and print every setting.  NAME and VALUE as in the driver's sysfs files:\n"
+"and print every setting.  NAME and VALUE as in the driver's sysfs files\n"
+"(hex ids without 0x; an x after a 29-bit one):\n"
 "  mask0 mask1         7ff (standard, 11 bit) or 1fffffffx (extended)\n"
 "  filter0 .. filter5  RXB0 uses filters 0-1, RXB1 filters 2-5\n"
 "  rxm0 rxm1           filtered, std, ext or any (filters off)\n"
 "  rollover            1: a frame for a full RXB0 goes to RXB1\n"
-"The chip forgets them at the next reset; dump --filter applies them for\n"
-"a capture.\n",
+"They stay in the chip for what comes next (send, dump, mcp2510d) until\n"
+"its power goes or filter runs again; filter alone accepts every frame\n"
+"again.  selftest replaces them, saying so; dump --filter NAME=VALUE\n"
+"changes settings on top of them for one capture.\n",
 	.run = filter_run,
 	.needs_device = true,
 };

@@ -234,6 +234,7 @@ const struct ctl_command ctl_exchange = {
 "print what each receives in candump -L format, labelled VARIANT.0 and\n"
 "VARIANT.1.  Exit 0 when each received exactly what the other sent.\n",
 	.run = exchange_run,
+	.options = count_options,
 	.needs_device = true,
 };
 

@@ -34,17 +34,13 @@ struct traffic_opts {
 	int count;			/* frames to wait for, -1: no limit */
 	int timeout_ms;
 	const char *label;
-	struct mcp2510_hw_filters filters;
-	bool filtered;
+	bool accept_all;		/* selftest: every frame must come back */
 	struct can_frame frames[CTL_MAX_ARGS];	/* send's, one per argument */
 };
 
 static int traffic_option(struct ctl *c, void *ctx, int id, const char *value)
 {
 	struct traffic_opts *t = ctx;
-	const char *eq;
-	char name[16];
-	size_t n;
 
 	switch (id) {
 	case OPT_COUNT:
@@ -57,15 +53,7 @@ static int traffic_option(struct ctl *c, void *ctx, int id, const char *value)
 		t->label = value;
 		return 0;
 	case OPT_FILTER:
-		eq = strchr(value, '=');
-		n = eq ? (size_t)(eq - value) : 0;
-		if (!n || n >= sizeof(name))
-			return ctl_bad(c, "--filter (NAME=VALUE)", value);
-		memcpy(name, value, n);
-		name[n] = '\0';
-		t->filtered = true;
-		return mcp2510_hw_filters_set(&t->filters, name, eq + 1) ?
-			ctl_bad(c, "--filter", value) : 0;
+		return cli_device_add_filter(&c->dev, &c->args, value);
 	default:
 		return -1;
 	}
@@ -76,12 +64,45 @@ static void traffic_defaults(struct traffic_opts *t)
 	memset(t, 0, sizeof(*t));
 	t->count = -1;
 	t->timeout_ms = DEFAULT_TIMEOUT_MS;
-	mcp2510_hw_filters_default(&t->filters);
 }
 
 static const char *label_of(const struct traffic_opts *t, struct mcp2510 *h)
 {
 	return t->label ? t->label : mcp2510_variant_name(h);
+}
+
+static bool filters_are_default(const struct mcp2510_hw_filters *f)
+{
+	struct mcp2510_hw_filters def;
+	char a[64], b[64];
+	unsigned int i;
+
+	mcp2510_hw_filters_default(&def);
+	for (i = 0; i < MCP2510_HW_FILTER_SETTINGS; i++) {
+		mcp2510_hw_filters_format(f, i, a, sizeof(a));
+		mcp2510_hw_filters_format(&def, i, b, sizeof(b));
+		if (strcmp(a, b))
+			return false;
+	}
+	return true;
+}
+
+/* The default filters instead of those the chip kept, saying so. */
+static int accept_all(struct ctl *c, struct mcp2510 *h)
+{
+	struct mcp2510_hw_filters f;
+
+	mcp2510_get_filters(h, &f);
+	if (filters_are_default(&f))
+		return 0;
+	cli_error(c->args.err, c->args.prog,
+		  "note: the chip's acceptance filters are reset to accept every frame");
+	mcp2510_hw_filters_default(&f);
+	if (mcp2510_set_filters(h, &f)) {
+		cli_error_errno(&c->args, "setting the filters");
+		return -1;
+	}
+	return 0;
 }
 
 static struct mcp2510 *open_up(struct ctl *c, const struct traffic_opts *t)
@@ -90,10 +111,8 @@ static struct mcp2510 *open_up(struct ctl *c, const struct traffic_opts *t)
 
 	if (!h)
 		return NULL;
-	if (t->filtered && mcp2510_set_filters(h, &t->filters)) {
-		cli_error_errno(&c->args, "setting the filters");
+	if (t->accept_all && accept_all(c, h))
 		goto out_close;
-	}
 	if (cli_device_up(&c->dev, h, &c->args))
 		goto out_close;
 	return h;
@@ -173,6 +192,11 @@ static int send_run(struct ctl *c)
 			CTL_MAX_ARGS, &done);
 	if (done)
 		return ret;
+	if (c->dev.ctrlmode & CAN_CTRLMODE_LISTENONLY) {
+		cli_error(c->args.err, c->args.prog,
+			  "send: --listen-only never transmits (no ACK, no frame): leave it out to send");
+		return EXIT_USAGE;
+	}
 	if (parse_frames(c, t.frames))
 		return EXIT_USAGE;
 	return ctl_on_chip(c, open_up(c, &t), send_all, &t);
@@ -182,7 +206,7 @@ const struct ctl_command ctl_send = {
 	.name = "send",
 	.summary = "send frames in cansend syntax",
 	.help =
-"Usage: mcp2510ctl --device DEV send [--timeout MS] FRAME...\n"
+"Usage: mcp2510ctl --device DEV send [-t|--timeout MS] FRAME...\n"
 "Bring the chip up at --bitrate, send each FRAME in order and wait until\n"
 "every one was acknowledged on the bus (exit 1 if not within MS, default\n"
 "1000).  FRAME in cansend syntax:\n"
@@ -192,9 +216,32 @@ const struct ctl_command ctl_send = {
 "  123#R  123#R3  remote frame, optionally with its length\n",
 	.run = send_run,
 	.needs_device = true,
+	.options = timeout_options,
 };
 
 /* ---- dump ---- */
+
+/*
+ * The capture ended without a frame for t->timeout_ms; with no timeout
+ * that means the simulated bus has nothing scheduled, ever.  Exit 1 when
+ * --count frames did not come.
+ */
+static int dump_ended(struct ctl *c, const struct traffic_opts *t, int seen)
+{
+	if (t->timeout_ms < 0)
+		cli_error(c->args.err, c->args.prog,
+			  "dump: the simulated bus has gone quiet for good (no node on it sends), stopping");
+	if (t->count < 0 || seen >= t->count)
+		return 0;
+	if (t->timeout_ms >= 0)
+		cli_error(c->args.err, c->args.prog,
+			  "dump: %d of %d frames, then none for %d ms",
+			  seen, t->count, t->timeout_ms);
+	else
+		cli_error(c->args.err, c->args.prog, "dump: %d of %d frames",
+			  seen, t->count);
+	return EXIT_FAIL;
+}
 
 static int dump_frames(struct ctl *c, struct mcp2510 *h,
 		       const struct traffic_opts *t)
@@ -205,7 +252,7 @@ static int dump_frames(struct ctl *c, struct mcp2510 *h,
 	while (t->count < 0 || seen < t->count) {
 		if (mcp2510_recv(h, &ev, t->timeout_ms)) {
 			if (errno == ETIMEDOUT || errno == EAGAIN)
-				break;
+				return dump_ended(c, t, seen);
 			cli_error_errno(&c->args, "receiving");
 			return EXIT_FAIL;
 		}
@@ -245,16 +292,19 @@ const struct ctl_command ctl_dump = {
 	.name = "dump",
 	.summary = "print received frames in candump -L format",
 	.help =
-"Usage: mcp2510ctl --device DEV dump [--count N] [--timeout MS]\n"
+"Usage: mcp2510ctl --device DEV dump [-n|--count N] [-t|--timeout MS]\n"
 "                  [--filter NAME=VALUE]... [--label NAME]\n"
 "Bring the chip up at --bitrate and print every received frame and error\n"
 "frame as candump -L does, with the chip's variant (or NAME) in place of\n"
 "the interface:  (1700000000.123456) mcp2510 123#DEADBEEF\n"
-"Stops after N frames, or when none came for MS milliseconds (default:\n"
-"wait forever).  --filter programs the acceptance filters first, with the\n"
-"names and values of the filter command.\n",
+"Stops after N frames (exit 1 if fewer came), or when none came for MS\n"
+"milliseconds (default: wait forever; on a simulated bus where no node\n"
+"sends, nothing can ever come, so it says so and stops at once).\n"
+"Filters set with the filter command stay; --filter NAME=VALUE changes\n"
+"settings on top of them, with the names and values of the filter command.\n",
 	.run = dump_run,
 	.needs_device = true,
+	.options = dump_options,
 };
 
 /* ---- selftest ---- */
@@ -337,7 +387,7 @@ static int selftest_run(struct ctl *c)
 	if (done)
 		return ret;
 	c->dev.ctrlmode |= CAN_CTRLMODE_LOOPBACK;
-	/* no --filter here, so t applies none */
+	t.accept_all = true;
 	return ctl_on_chip(c, open_up(c, &t), selftest_loop, &t);
 }
 
@@ -348,7 +398,10 @@ const struct ctl_command ctl_selftest = {
 "Usage: mcp2510ctl --device DEV selftest [--timeout MS]\n"
 "Bring the chip up in loopback mode (nothing reaches the bus), send\n"
 "standard and extended data frames of every length and remote frames,\n"
-"and check each comes back identical.  Prints PASS or FAIL; exit 0 or 1.\n",
+"and check each comes back identical.  Prints PASS or FAIL; exit 0 or 1.\n"
+"Filters set with the filter command are reset to accept every frame\n"
+"(with a note saying so).\n",
 	.run = selftest_run,
 	.needs_device = true,
+	.options = timeout_options,
 };

@@ -19,10 +19,11 @@
 
 #define PROG "mcp2510d"
 
-enum { OPT_IFACE = CLI_OPT_FIRST_OWN };
+enum { OPT_IFACE = CLI_OPT_FIRST_OWN, OPT_FILTER };
 
 static const struct cli_option own_options[] = {
 	{ "iface", true, OPT_IFACE },
+	{ "filter", true, OPT_FILTER },
 	{ NULL, false, 0 },
 };
 
@@ -34,7 +35,10 @@ static void usage(FILE *out)
 	      "the chip receives are written to IFACE, frames sent on IFACE by other\n"
 	      "programs go out on the chip's bus.  Stops on SIGINT or SIGTERM.\n\n"
 	      "Options:\n"
-	      "  --iface IFACE       the SocketCAN interface (required)\n", out);
+	      "  --iface IFACE       the SocketCAN interface (required)\n"
+	      "  --filter NAME=VALUE an acceptance filter setting, as mcp2510ctl filter\n"
+	      "                      takes it (mask0=7ff filter0=123 ...), on top of\n"
+	      "                      those the chip holds; may be repeated\n", out);
 	fputs(cli_device_help, out);
 	fputs("  -h, --help          this text\n", out);
 }
@@ -65,11 +69,20 @@ static int parse_args(int argc, char **argv, struct daemon_opts *o)
 			usage(stdout);
 			return -1;
 		}
+		if (id == CLI_OPT_VERSION) {
+			cli_version(stdout, PROG);
+			return -1;
+		}
 		if (id == OPT_IFACE)
 			o->iface = value;
-		else if (cli_device_set(&o->dev, &a, id, value))
+		else if (id == OPT_FILTER) {
+			if (cli_device_add_filter(&o->dev, &a, value))
+				return EXIT_USAGE;
+		} else if (cli_device_set(&o->dev, &a, id, value))
 			return EXIT_USAGE;
 	}
+	if (cli_device_check(&o->dev, &a))
+		return EXIT_USAGE;
 	if (!o->iface) {
 		cli_error(stderr, PROG, "no --iface given (e.g. --iface vcan0)");
 		return EXIT_USAGE;

@@ -128,5 +128,30 @@ rx0=$(cat /sys/class/net/can0/statistics/rx_packets)
 [ "$tx0" -eq 3 ] || fail "can0 tx_packets $tx0, expected 3"
 [ "$rx0" -eq 3 ] || fail "can0 rx_packets $rx0, expected 3"
 
+echo "== a live chip answers; filters set by mcp2510ctl filter stay"
+ctl info || fail "mcp2510ctl info refused a chip that is there"
+ctl filter mask0=7ff mask1=7ff filter0=123 filter1=123 filter2=123 \
+	filter3=123 filter4=123 filter5=123 >/tmp/filter.txt ||
+	fail "mcp2510ctl filter failed"
+grep -qx 'filter0 123' /tmp/filter.txt || fail "filter did not show filter0 123"
+ctl dump --count 1 --timeout 5000 >/tmp/dump.txt &
+ctl_pid=$!
+wait_for dump_ready || fail "mcp2510ctl dump did not bring chip 1 up with INT1"
+cansend can0 124#01 || fail "cansend 124#01 failed"
+cansend can0 123#02 || fail "cansend 123#02 failed"
+wait "$ctl_pid" || { cat /tmp/dump.txt; fail "filtered mcp2510ctl dump failed"; }
+cat /tmp/dump.txt
+grep -q "^([0-9]*\.[0-9]*) $label 123#02$" /tmp/dump.txt ||
+	fail "dump did not keep the filters mcp2510ctl filter set"
+
+echo "== a missing gpiochip is named, not the spidev device"
+if mcp2510ctl --device "$dev" --int gpiochip99:0 --variant "$VM_VARIANT" \
+	info 2>/tmp/err.txt; then
+	fail "mcp2510ctl info with a missing gpiochip succeeded"
+fi
+cat /tmp/err.txt
+grep -q "^mcp2510ctl: INT line gpiochip99:0: .*(spidev:$dev itself opens fine)" \
+	/tmp/err.txt || fail "a missing gpiochip was not named"
+
 ip link set can0 down
 echo "userspace-spidev: ok"
