@@ -134,6 +134,7 @@ US_UNIT_TRANSPORT_SRCS := $(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS) \
 US_UNIT_CTL_SRCS := $(filter-out %/mcp2510ctl.c,$(US_CTL_SRCS)) \
 		    $(US_DIR)/tools/bridge.c $(US_UNIT_TEXT_SRCS)
 
+US_UNIT_BRIDGE_SRCS := $(US_DIR)/tools/bridge.c $(US_UNIT_LIB_SRCS)
 US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(wildcard \
 			$(TOP)/tests/unit/test_userspace_*.c \
 			$(TOP)/tests/unit/userspace_*.c)) \
@@ -152,4 +153,4 @@ US_COMMA := ,
 $(BUILD)/%/test_userspace_transport: UNIT_LDLIBS += \
 	-Wl$(US_COMMA)$(subst $(US_EMPTY) $(US_EMPTY),$(US_COMMA),$(addprefix --wrap=,$(US_WRAPPED)))
 $(BUILD)/%/test_userspace_text $(BUILD)/%/test_userspace_lib \
-$(BUILD)/%/test_userspace_ctl: UNIT_LDLIBS += $(US_LDLIBS)
+$(BUILD)/%/test_userspace_ctl $(BUILD)/%/test_userspace_bridge: UNIT_LDLIBS += $(US_LDLIBS)
