@@ -115,10 +115,9 @@ static int flush_out(struct bridge *b)
 
 static int to_socket(struct bridge *b, const struct can_frame *cf)
 {
-	int ret = 0;
-
 	if (!b->out_count) {
-		ret = write_one(b, cf);
+		int ret = write_one(b, cf);
+
 		if (ret)
 			return ret < 0 ? -1 : 0;
 	}
@@ -309,13 +308,13 @@ static int from_socket(struct bridge *b)
 
 /* ---- the loop --------------------------------------------------------------- */
 
-static int due_restart(struct bridge *b)
+static void due_restart(struct bridge *b)
 {
 	if (!b->bus_off || !b->restart_ms || ms_until(&b->restart_at))
-		return 0;
+		return;
 	/* a failed restart leaves the chip bus-off: the bridge goes on */
-	bridge_restart(b);
-	return 0;
+	if (bridge_restart(b))
+		b->counts.restart_failures++;
 }
 
 /* What @timeout_ms becomes with a retry or a restart due earlier. */
@@ -344,9 +343,8 @@ int bridge_poll(struct bridge *b, int stop_fd, int timeout_ms)
 		return -1;
 	if ((p[1].revents & (POLLIN | POLLHUP)) && from_socket(b))
 		return -1;
-	if (due_restart(b) || flush_out(b))
-		return -1;
-	return 0;
+	due_restart(b);
+	return flush_out(b);
 }
 
 void bridge_print_stats(struct bridge *b, FILE *out, const char *prefix)

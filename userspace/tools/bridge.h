@@ -40,6 +40,7 @@ struct bridge_counts {
 	uint64_t bus_off_drops;		/* read from the socket while bus-off */
 	uint64_t bus_offs;
 	uint64_t restarts;
+	uint64_t restart_failures;	/* automatic restarts that failed */
 };
 
 struct bridge {

@@ -180,36 +180,41 @@ static int take_signals(struct bridge *b, int sig_fd)
 }
 
 /* Bus-off and restarts are told as the kernel's can-dev tells them. */
-static void report_bus(const struct bridge *b, uint64_t *bus_offs,
-		       uint64_t *restarts, const char *iface)
+static void report_bus(const struct bridge *b, struct bridge_counts *seen,
+		       const char *iface)
 {
-	if (b->counts.bus_offs != *bus_offs && b->restart_ms)
+	const struct bridge_counts *c = &b->counts;
+
+	if (c->bus_offs != seen->bus_offs && b->restart_ms)
 		fprintf(stderr, "%s: %s: bus-off, scheduling restart in %d ms\n",
 			PROG, iface, b->restart_ms);
-	else if (b->counts.bus_offs != *bus_offs)
+	else if (c->bus_offs != seen->bus_offs)
 		fprintf(stderr, "%s: %s: bus-off, restart with SIGHUP\n",
 			PROG, iface);
-	if (b->counts.restarts != *restarts)
+	if (c->restart_failures != seen->restart_failures)
+		fprintf(stderr, "%s: %s: restart failed, trying again\n",
+			PROG, iface);
+	if (c->restarts != seen->restarts)
 		fprintf(stderr, "%s: %s: restarted\n", PROG, iface);
-	*bus_offs = b->counts.bus_offs;
-	*restarts = b->counts.restarts;
+	*seen = *c;
 }
 
 static int run(struct mcp2510 *h, int sock, int sig_fd,
 	       const struct daemon_opts *o)
 {
-	uint64_t bus_offs = 0, restarts = 0;
+	struct bridge_counts seen = { 0 };
 	struct bridge b;
 	int ret;
 
 	bridge_init(&b, h, sock);
 	b.restart_ms = o->restart_ms;
-	for (;;) {
+	do {
 		ret = bridge_poll(&b, sig_fd, -1);
-		report_bus(&b, &bus_offs, &restarts, o->iface);
-		if (ret < 0 || (ret > 0 && take_signals(&b, sig_fd)))
-			break;
-	}
+		/* 1: a signal came; it may have been SIGHUP's restart */
+		if (ret > 0)
+			ret = take_signals(&b, sig_fd);
+		report_bus(&b, &seen, o->iface);
+	} while (!ret);
 	if (ret < 0)
 		cli_error(stderr, PROG, "bridge: %s", strerror(errno));
 	else
