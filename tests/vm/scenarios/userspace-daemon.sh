@@ -9,7 +9,8 @@
 # --restart-ms has passed, vcan0 must carry the bus-off and restarted error
 # frames, and traffic must flow again.  Then a second daemon, started with
 # a small socket receive queue, is stopped while a burst arrives: what the
-# queue dropped must be counted (SO_RXQ_OVFL), exactly.  Each daemon's
+# queue dropped must be counted (SO_RXQ_OVFL), exactly; with restart-ms 0
+# it stays bus-off until SIGHUP.  Each daemon's
 # statistics lines (SIGUSR1 and at exit) and can1's counters account for
 # every frame.
 # Bus time runs 50 times slower than real time, as in driver-busoff-restart:
@@ -45,15 +46,15 @@ chip0_on_bus() { [ "$(sim_state 0 opmode)" = normal ]; }
 daemon_ready() {
 	grep -q "INT0 *|mcp2510 " /sys/kernel/debug/gpio && chip0_on_bus
 }
-# daemon_start LOG RMEM: mcp2510d on chip 0 with a socket receive queue of
-# RMEM bytes (the default for sockets made meanwhile).
+# daemon_start LOG RMEM RESTART_MS: mcp2510d on chip 0 with a socket
+# receive queue of RMEM bytes (the default for sockets made meanwhile).
 daemon_start() {
 	DLOG=$1
 	_rmem=$(cat /proc/sys/net/core/rmem_default)
 	echo "$2" >/proc/sys/net/core/rmem_default
 	mcp2510d --device "spidev:$dev" --int "$gpiochip:0" --clock 16000000 \
 		--variant "$VM_VARIANT" --bitrate 125000 --iface vcan0 \
-		--restart-ms $RESTART_MS 2>"$DLOG" &
+		--restart-ms "$3" 2>"$DLOG" &
 	D_PID=$!
 	wait_for 10 daemon_ready || dfail "mcp2510d did not bring chip 0 up"
 	echo "$_rmem" >/proc/sys/net/core/rmem_default
@@ -96,7 +97,7 @@ gpiochip=$(gpiodetect | awk '$2 == "[mcp2510-sim]" { print $1 }')
 can_up can1 125000
 ip link add dev vcan0 type vcan
 ip link set vcan0 up
-daemon_start /tmp/d.log "$(cat /proc/sys/net/core/rmem_default)"
+daemon_start /tmp/d.log "$(cat /proc/sys/net/core/rmem_default)" $RESTART_MS
 
 echo "== vcan0 -> can1, can1 -> vcan0"
 to_can1 5 123
@@ -152,7 +153,7 @@ expect_eq "restarts" "$(stat restarts)" 1
 expect_eq "chip0 bus-offs" "$(sim_counter 0 bus_off)" 1
 
 echo "== a burst while a daemon with a small queue is stopped: counted"
-daemon_start /tmp/d2.log 4096
+daemon_start /tmp/d2.log 4096 0
 rx1=$(if_stat can1 rx_packets)
 kill -STOP "$D_PID"
 cangen vcan0 -n 40 -g 0 -I 200 -L 8 -D i
@@ -166,10 +167,25 @@ lost=$(stat rxq-overflow)
 echo "burst: $burst of 40 reached can1, $lost dropped by the socket's queue"
 [ "$lost" -gt 0 ] || dfail "the receive queue overflowed silently"
 expect_eq "burst forwarded + dropped" $((burst + lost)) 40
+
+echo "== restart-ms 0: bus-off until SIGHUP"
+echo 32 >"$SIM/bus_errors"
+cansend vcan0 100#02
+wait_for 30 logged "bus-off, restart with SIGHUP" || dfail "mcp2510d reported no bus-off"
+nap 1.5
+chip0_on_bus && dfail "chip 0 left bus-off without SIGHUP"
+kill -HUP "$D_PID"
+wait_for 10 logged restarted || dfail "no restart on SIGHUP"
+wait_for 10 chip0_on_bus || dfail "chip 0 not back on the bus after SIGHUP"
+to_can1 1 457
 daemon_stop
-expect_eq "to-chip" "$(stat to-chip)" "$burst"
+# the burst's frames, the one aborted at bus-off and the one after it
+expect_eq "to-chip" "$(stat to-chip)" $((burst + 2))
+expect_eq "tx-aborted" "$(stat tx-aborted)" 1
 expect_eq "rxq-overflow" "$(stat rxq-overflow)" "$lost"
-expect_eq "can1 rx_packets" "$(if_stat can1 rx_packets)" $((10 + burst))
+expect_eq "bus-off" "$(stat bus-off)" 1
+expect_eq "restarts" "$(stat restarts)" 1
+expect_eq "can1 rx_packets" "$(if_stat can1 rx_packets)" $((10 + burst + 1))
 expect_eq "can1 rx_over_errors" "$(if_stat can1 rx_over_errors)" 0
 
 ip link set can1 down
