@@ -266,6 +266,51 @@ static void test_rxq_drops_follow_the_kernel_total(void **state)
 	assert_int_equal(b.counts.rxq_drops, 17);
 }
 
+/* msg with one control message LEVEL/TYPE carrying @v in @len bytes */
+static void one_cmsg(struct msghdr *msg, char *buf, size_t size, int level,
+		     int type, uint32_t v, size_t len)
+{
+	struct cmsghdr *c;
+
+	memset(msg, 0, sizeof(*msg));
+	memset(buf, 0, size);
+	msg->msg_control = buf;
+	msg->msg_controllen = CMSG_SPACE(sizeof(v));
+	c = CMSG_FIRSTHDR(msg);
+	c->cmsg_level = level;
+	c->cmsg_type = type;
+	c->cmsg_len = CMSG_LEN(len);
+	memcpy(CMSG_DATA(c), &v, len < sizeof(v) ? len : sizeof(v));
+}
+
+static void test_rxq_drops_from_the_cmsg(void **state)
+{
+	union {
+		char buf[CMSG_SPACE(sizeof(uint32_t))];
+		struct cmsghdr align;
+	} u;
+	struct msghdr msg;
+	struct bridge b;
+
+	(void)state;
+	bridge_init(&b, NULL, -1);
+	one_cmsg(&msg, u.buf, sizeof(u.buf), SOL_SOCKET, SO_RXQ_OVFL, 7, 4);
+	bridge_take_cmsgs(&b, &msg);
+	assert_int_equal(b.counts.rxq_drops, 7);
+	/* another option's message, or one too short, is no drop count */
+	one_cmsg(&msg, u.buf, sizeof(u.buf), SOL_SOCKET, SO_TIMESTAMP, 50, 4);
+	bridge_take_cmsgs(&b, &msg);
+	one_cmsg(&msg, u.buf, sizeof(u.buf), SOL_CAN_BASE, SO_RXQ_OVFL, 50, 4);
+	bridge_take_cmsgs(&b, &msg);
+	one_cmsg(&msg, u.buf, sizeof(u.buf), SOL_SOCKET, SO_RXQ_OVFL, 50, 2);
+	bridge_take_cmsgs(&b, &msg);
+	assert_int_equal(b.counts.rxq_drops, 7);
+	/* none at all */
+	memset(&msg, 0, sizeof(msg));
+	bridge_take_cmsgs(&b, &msg);
+	assert_int_equal(b.counts.rxq_drops, 7);
+}
+
 static void test_stats_lines(void **state)
 {
 	struct rig *r = rig_new("sim:stats", 0);
@@ -299,6 +344,7 @@ int main(void)
 		cmocka_unit_test(test_bus_off_restarts_after_restart_ms),
 		cmocka_unit_test(test_refused_writes_are_retried),
 		cmocka_unit_test(test_rxq_drops_follow_the_kernel_total),
+		cmocka_unit_test(test_rxq_drops_from_the_cmsg),
 		cmocka_unit_test(test_stats_lines),
 	};
 

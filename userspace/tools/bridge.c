@@ -259,8 +259,7 @@ static int flush_held(struct bridge *b)
 	return 0;
 }
 
-/* The SO_RXQ_OVFL total that came with a datagram, if any. */
-static void take_cmsgs(struct bridge *b, struct msghdr *msg)
+void bridge_take_cmsgs(struct bridge *b, struct msghdr *msg)
 {
 	struct cmsghdr *c;
 	uint32_t total;
@@ -292,7 +291,7 @@ static int from_socket(struct bridge *b)
 		errno = ECONNRESET;
 		return -1;
 	}
-	take_cmsgs(b, &msg);
+	bridge_take_cmsgs(b, &msg);
 	if (n != (ssize_t)sizeof(b->held) || b->held.can_id & CAN_ERR_FLAG) {
 		b->counts.ignored++;
 		return 0;

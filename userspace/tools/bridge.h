@@ -18,6 +18,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <time.h>
+#include <sys/socket.h>
 #include <linux/can.h>
 
 #include "mcp2510.h"
@@ -80,6 +81,8 @@ int bridge_restart(struct bridge *b);
  * counts.rxq_drops; a total older than the last one adds nothing.
  */
 void bridge_rxq_total(struct bridge *b, uint32_t total);
+/* The SO_RXQ_OVFL total that came with a datagram read into @msg, if any. */
+void bridge_take_cmsgs(struct bridge *b, struct msghdr *msg);
 /*
  * The counters as "PREFIX: stats SET: name value ..." lines, one a set,
  * with the socket's drop count brought up to date first.
