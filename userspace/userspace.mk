@@ -19,6 +19,9 @@ US_SOVERSION := 0
 MCP2510_SIM ?= 1
 PREFIX ?= /usr/local
 LIBDIR ?= $(PREFIX)/lib
+MANDIR ?= $(PREFIX)/share/man
+SYSTEMDUNITDIR ?= $(PREFIX)/lib/systemd/system
+US_EXAMPLEDIR ?= $(PREFIX)/share/doc/mcp2510d/examples
 
 US_PACKAGES := pkg-config libgpiod-dev
 US_CPPFLAGS := -I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib \
@@ -50,9 +53,13 @@ US_SONAME := libmcp2510.so.$(US_SOVERSION)
 US_CTL := $(US_OUT)/bin/mcp2510ctl
 US_DAEMON := $(US_OUT)/bin/mcp2510d
 US_PC := $(US_OUT)/libmcp2510.pc
+US_UNIT := $(US_OUT)/mcp2510d@.service
+US_MANS := $(addprefix $(US_DIR)/man/,mcp2510ctl.1 libmcp2510.3 mcp2510d.8)
+US_EXAMPLES := $(addprefix $(US_DIR)/systemd/,80-mcp2510-vcan0.netdev \
+		80-mcp2510-vcan0.network vcan0.conf)
 
 .PHONY: userspace userspace-deps install-userspace userspace-check
-userspace: $(US_A) $(US_SO) $(US_CTL) $(US_DAEMON) $(US_PC)
+userspace: $(US_A) $(US_SO) $(US_CTL) $(US_DAEMON) $(US_PC) $(US_UNIT)
 
 userspace-deps:
 	@$(ENSURE) $(US_PACKAGES)
@@ -94,6 +101,10 @@ $(US_PC): $(TOP)/$(US_DIR)/libmcp2510.pc.in $(US_OUT)/prefix
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
 	    -e 's|@VERSION@|$(US_VERSION)|' $< > $@
 
+# The unit names the daemon where install-userspace puts it.
+$(US_UNIT): $(TOP)/$(US_DIR)/systemd/mcp2510d@.service.in $(US_OUT)/prefix
+	sed -e 's|@BINDIR@|$(PREFIX)/bin|' $< > $@
+
 .PHONY: FORCE
 FORCE:
 
@@ -112,6 +123,13 @@ install-userspace: userspace
 		$(DESTDIR)$(PREFIX)/include/
 	install -m 644 $(TOP)/uapi/linux/can/mcp2510.h \
 		$(DESTDIR)$(PREFIX)/include/linux/can/
+	install -d $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man3 \
+		$(DESTDIR)$(MANDIR)/man8 $(DESTDIR)$(SYSTEMDUNITDIR) \
+		$(DESTDIR)$(US_EXAMPLEDIR)
+	$(foreach m,$(US_MANS),install -m 644 $(TOP)/$(m) \
+		$(DESTDIR)$(MANDIR)/man$(subst .,,$(suffix $(m)))/ &&) true
+	install -m 644 $(US_UNIT) $(DESTDIR)$(SYSTEMDUNITDIR)/
+	install -m 644 $(addprefix $(TOP)/,$(US_EXAMPLES)) $(DESTDIR)$(US_EXAMPLEDIR)/
 
 userspace-check: userspace
 	@$(ENSURE) can-utils binutils
@@ -134,6 +152,7 @@ US_UNIT_TRANSPORT_SRCS := $(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS) \
 US_UNIT_CTL_SRCS := $(filter-out %/mcp2510ctl.c,$(US_CTL_SRCS)) \
 		    $(US_DIR)/tools/bridge.c $(US_UNIT_TEXT_SRCS)
 
+US_UNIT_BRIDGE_SRCS := $(US_DIR)/tools/bridge.c $(US_UNIT_LIB_SRCS)
 US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(wildcard \
 			$(TOP)/tests/unit/test_userspace_*.c \
 			$(TOP)/tests/unit/userspace_*.c)) \
@@ -152,4 +171,4 @@ US_COMMA := ,
 $(BUILD)/%/test_userspace_transport: UNIT_LDLIBS += \
 	-Wl$(US_COMMA)$(subst $(US_EMPTY) $(US_EMPTY),$(US_COMMA),$(addprefix --wrap=,$(US_WRAPPED)))
 $(BUILD)/%/test_userspace_text $(BUILD)/%/test_userspace_lib \
-$(BUILD)/%/test_userspace_ctl: UNIT_LDLIBS += $(US_LDLIBS)
+$(BUILD)/%/test_userspace_ctl $(BUILD)/%/test_userspace_bridge: UNIT_LDLIBS += $(US_LDLIBS)

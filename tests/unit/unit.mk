@@ -65,6 +65,8 @@ UNIT_SUITES += test_userspace_lib
 test_userspace_lib_SRCS := $(US_UNIT_LIB_SRCS)
 UNIT_SUITES += test_userspace_ctl
 test_userspace_ctl_SRCS := $(US_UNIT_CTL_SRCS)
+UNIT_SUITES += test_userspace_bridge
+test_userspace_bridge_SRCS := $(US_UNIT_BRIDGE_SRCS)
 
 # ---- rules (no need to touch these to add a suite) ------------------------
 UNIT_FLAVOURS := unit unit-asan coverage

@@ -31,6 +31,9 @@
  * sticks that chip's MISO line at 0x00 or 0xff (the model's spi_corrupt
  * fault), as a chip that is not there or not powered reads: for trying
  * how the library and the tools report a missing chip.
+ * MCP2510_SIM_BUS_ERRORS=N, set when a bus is created, destroys its first
+ * N frames with an error frame (the model's bus_errors fault): 32 of one
+ * transmitter's frames put it bus-off, for tests of what follows.
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -49,6 +52,7 @@
 #define NS_PER_MS		1000000ull
 #define SPI_TIME_ENV		"MCP2510_SIM_SPI_TIME"
 #define MISO_ENV		"MCP2510_SIM_MISO"
+#define BUS_ERRORS_ENV		"MCP2510_SIM_BUS_ERRORS"
 
 struct sim_transport;
 
@@ -335,6 +339,23 @@ static int spi_time_from_env(struct sim_spi_timing *t)
 	return 0;
 }
 
+/* MCP2510_SIM_BUS_ERRORS: 0, or -EINVAL for a malformed value. */
+static int bus_errors_from_env(struct sim_bus *bus)
+{
+	const char *p = getenv(BUS_ERRORS_ENV);
+	unsigned long v;
+	char *end;
+
+	if (!p || !*p)
+		return 0;
+	errno = 0;
+	v = strtoul(p, &end, 10);
+	if (errno || *end || v > UINT32_MAX)
+		return -EINVAL;
+	sim_bus_faults(bus)->bus_errors = (uint32_t)v;
+	return 0;
+}
+
 static int shared_bus_get(const char *name, struct shared_bus **out)
 {
 	struct shared_bus *sb = name[0] ? shared_bus_find(name) : NULL;
@@ -348,7 +369,8 @@ static int shared_bus_get(const char *name, struct shared_bus **out)
 		strcpy(sb->name, name);
 		sim_bus_init(&sb->bus);
 		sim_spi_bus_init(&sb->spi);
-		if (spi_time_from_env(&sb->spi.timing)) {
+		if (spi_time_from_env(&sb->spi.timing) ||
+		    bus_errors_from_env(&sb->bus)) {
 			free(sb);
 			return -EINVAL;
 		}

@@ -19,11 +19,12 @@
 
 #define PROG "mcp2510d"
 
-enum { OPT_IFACE = CLI_OPT_FIRST_OWN, OPT_FILTER };
+enum { OPT_IFACE = CLI_OPT_FIRST_OWN, OPT_FILTER, OPT_RESTART_MS };
 
 static const struct cli_option own_options[] = {
 	{ "iface", true, OPT_IFACE },
 	{ "filter", true, OPT_FILTER },
+	{ "restart-ms", true, OPT_RESTART_MS },
 	{ NULL, false, 0 },
 };
 
@@ -33,12 +34,16 @@ static void usage(FILE *out)
 	      "Run an MCP2510/MCP2515/MCP25625 through libmcp2510 and bridge it to\n"
 	      "the SocketCAN interface IFACE (e.g. vcan0): frames and error frames\n"
 	      "the chip receives are written to IFACE, frames sent on IFACE by other\n"
-	      "programs go out on the chip's bus.  Stops on SIGINT or SIGTERM.\n\n"
+	      "programs go out on the chip's bus.  Stops on SIGINT or SIGTERM;\n"
+	      "SIGUSR1 prints the statistics, SIGHUP restarts a bus-off chip\n"
+	      "when --restart-ms is 0.\n\n"
 	      "Options:\n"
 	      "  --iface IFACE       the SocketCAN interface (required)\n"
 	      "  --filter NAME=VALUE an acceptance filter setting, as mcp2510ctl filter\n"
 	      "                      takes it (mask0=7ff filter0=123 ...), on top of\n"
-	      "                      those the chip holds; may be repeated\n", out);
+	      "                      those the chip holds; may be repeated\n"
+	      "  --restart-ms MS     after bus-off, rejoin the bus MS ms later; 0 (the\n"
+	      "                      default): stay bus-off until SIGHUP\n", out);
 	fputs(cli_device_help, out);
 	fputs("  -h, --help          this text\n", out);
 }
@@ -46,7 +51,17 @@ static void usage(FILE *out)
 struct daemon_opts {
 	struct cli_device dev;
 	const char *iface;
+	int restart_ms;
 };
+
+/* As "ip link set ... type can restart-ms MS": milliseconds, 0 for none. */
+static int set_restart_ms(struct daemon_opts *o, const char *value)
+{
+	if (!cli_int(value, false, &o->restart_ms))
+		return 0;
+	cli_error(stderr, PROG, "invalid value '%s' for --restart-ms", value);
+	return -1;
+}
 
 /* 0 to run, or the exit status to end with. */
 static int parse_args(int argc, char **argv, struct daemon_opts *o)
@@ -78,6 +93,9 @@ static int parse_args(int argc, char **argv, struct daemon_opts *o)
 		else if (id == OPT_FILTER) {
 			if (cli_device_add_filter(&o->dev, &a, value))
 				return EXIT_USAGE;
+		} else if (id == OPT_RESTART_MS) {
+			if (set_restart_ms(o, value))
+				return EXIT_USAGE;
 		} else if (cli_device_set(&o->dev, &a, id, value))
 			return EXIT_USAGE;
 	}
@@ -95,12 +113,16 @@ static int raw_socket_setup(int s, unsigned int ifindex)
 	struct sockaddr_can addr = { .can_family = AF_CAN,
 				     .can_ifindex = (int)ifindex };
 	can_err_mask_t errors = CAN_ERR_MASK;
-	int off = 0;
+	int off = 0, on = 1;
 
-	/* error frames both ways; never read back what we wrote */
+	/*
+	 * Error frames both ways; never read back what we wrote; the count
+	 * of frames the receive queue dropped comes with each frame read.
+	 */
 	if (setsockopt(s, SOL_CAN_RAW, CAN_RAW_ERR_FILTER, &errors,
 		       sizeof(errors)) ||
-	    setsockopt(s, SOL_CAN_RAW, CAN_RAW_RECV_OWN_MSGS, &off, sizeof(off)))
+	    setsockopt(s, SOL_CAN_RAW, CAN_RAW_RECV_OWN_MSGS, &off, sizeof(off)) ||
+	    setsockopt(s, SOL_SOCKET, SO_RXQ_OVFL, &on, sizeof(on)))
 		return -1;
 	return bind(s, (struct sockaddr *)&addr, sizeof(addr));
 }
@@ -126,36 +148,92 @@ static int raw_socket_open(const char *iface)
 	return s;
 }
 
-static int stop_signals_fd(void)
+/* SIGINT and SIGTERM stop, SIGHUP restarts, SIGUSR1 prints statistics. */
+static int signals_fd(void)
 {
 	sigset_t set;
 
 	sigemptyset(&set);
 	sigaddset(&set, SIGINT);
 	sigaddset(&set, SIGTERM);
+	sigaddset(&set, SIGHUP);
+	sigaddset(&set, SIGUSR1);
 	if (sigprocmask(SIG_BLOCK, &set, NULL))
 		return -1;
-	return signalfd(-1, &set, SFD_CLOEXEC);
+	return signalfd(-1, &set, SFD_CLOEXEC | SFD_NONBLOCK);
 }
 
-static int run(struct mcp2510 *h, int sock, int stop_fd)
+/* SIGHUP: a manual restart, allowed when the kernel would allow one. */
+static void manual_restart(struct bridge *b)
 {
+	if (b->restart_ms) {
+		cli_error(stderr, PROG, "SIGHUP ignored: the restart comes by itself (--restart-ms %d)",
+			  b->restart_ms);
+		return;
+	}
+	if (bridge_restart(b))
+		cli_error(stderr, PROG, "restart: %s", errno == EBUSY ?
+			  "the chip is not bus-off" : strerror(errno));
+}
+
+/* 1 to stop, 0 to go on. */
+static int take_signals(struct bridge *b, int sig_fd)
+{
+	struct signalfd_siginfo si;
+
+	while (read(sig_fd, &si, sizeof(si)) == (ssize_t)sizeof(si)) {
+		if (si.ssi_signo == SIGUSR1)
+			bridge_print_stats(b, stderr, PROG);
+		else if (si.ssi_signo == SIGHUP)
+			manual_restart(b);
+		else
+			return 1;
+	}
+	return 0;
+}
+
+/* Bus-off and restarts are told as the kernel's can-dev tells them. */
+static void report_bus(const struct bridge *b, struct bridge_counts *seen,
+		       const char *iface)
+{
+	const struct bridge_counts *c = &b->counts;
+
+	if (c->bus_offs != seen->bus_offs && b->restart_ms)
+		fprintf(stderr, "%s: %s: bus-off, scheduling restart in %d ms\n",
+			PROG, iface, b->restart_ms);
+	else if (c->bus_offs != seen->bus_offs)
+		fprintf(stderr, "%s: %s: bus-off, restart with SIGHUP\n",
+			PROG, iface);
+	if (c->restart_failures != seen->restart_failures)
+		fprintf(stderr, "%s: %s: restart failed, trying again\n",
+			PROG, iface);
+	if (c->restarts != seen->restarts)
+		fprintf(stderr, "%s: %s: restarted\n", PROG, iface);
+	*seen = *c;
+}
+
+static int run(struct mcp2510 *h, int sock, int sig_fd,
+	       const struct daemon_opts *o)
+{
+	struct bridge_counts seen = { 0 };
 	struct bridge b;
 	int ret;
 
 	bridge_init(&b, h, sock);
-	while (!(ret = bridge_poll(&b, stop_fd, -1)))
-		;
-	if (ret < 0) {
+	b.restart_ms = o->restart_ms;
+	do {
+		ret = bridge_poll(&b, sig_fd, -1);
+		/* 1: a signal came; it may have been SIGHUP's restart */
+		if (ret > 0)
+			ret = take_signals(&b, sig_fd);
+		report_bus(&b, &seen, o->iface);
+	} while (!ret);
+	if (ret < 0)
 		cli_error(stderr, PROG, "bridge: %s", strerror(errno));
-		return EXIT_FAIL;
-	}
-	fprintf(stderr,
-		"%s: stopped; %llu frames to the interface, %llu to the chip, %llu dropped\n",
-		PROG, (unsigned long long)b.counts.to_socket,
-		(unsigned long long)b.counts.to_chip,
-		(unsigned long long)b.counts.socket_drops + b.counts.chip_drops);
-	return 0;
+	else
+		fprintf(stderr, "%s: stopped\n", PROG);
+	bridge_print_stats(&b, stderr, PROG);
+	return ret < 0 ? EXIT_FAIL : 0;
 }
 
 int main(int argc, char **argv)
@@ -163,14 +241,14 @@ int main(int argc, char **argv)
 	struct cli_args a = { argc, argv, 1, false, PROG, stderr };
 	struct daemon_opts o = { .iface = NULL };
 	struct mcp2510 *h;
-	int ret, sock, stop_fd;
+	int ret, sock, sig_fd;
 
 	cli_device_init(&o.dev);
 	ret = parse_args(argc, argv, &o);
 	if (ret)
 		return ret < 0 ? 0 : ret;
-	stop_fd = stop_signals_fd();
-	if (stop_fd < 0) {
+	sig_fd = signals_fd();
+	if (sig_fd < 0) {
 		cli_error_errno(&a, "signals");
 		return EXIT_FAIL;
 	}
@@ -182,11 +260,11 @@ int main(int argc, char **argv)
 	if (!h)
 		goto out_socket;
 	if (!cli_device_up(&o.dev, h, &a))
-		ret = run(h, sock, stop_fd);
+		ret = run(h, sock, sig_fd, &o);
 	mcp2510_close(h);
 out_socket:
 	close(sock);
 out_signals:
-	close(stop_fd);
+	close(sig_fd);
 	return ret;
 }
