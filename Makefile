@@ -27,6 +27,7 @@ help:
 	@echo "make coverage  line coverage of the chip model (tests/sim)"
 	@echo "make userspace libmcp2510, mcp2510ctl, mcp2510d"
 	@echo "make modules   kernel modules (KDIR= selects the headers)"
+	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
 
 deps:
@@ -40,6 +41,7 @@ include driver/core/core.mk
 include userspace/userspace.mk
 include tests/unit/unit.mk
 include driver/driver.mk
+include tests/install/install.mk
 include tests/vm-arm64/vm-arm64.mk
 include tests/kmod/kmod.mk
 include tests/vm/vm.mk

@@ -1,8 +1,11 @@
 # driver/driver.mk: the kernel modules built from the root Kbuild.
 #
-#   make modules [KDIR=dir]   build against KDIR: the running kernel's build
-#                             tree, else the newest /usr/src/linux-headers-*-amd64;
-#                             the .ko files land in build/modules/<release>/
+#   make modules [KDIR=dir]   build against KDIR, by default the running
+#                             kernel's build tree (/lib/modules/$(uname -r)/build)
+#                             on any architecture; without it, stop and name
+#                             the headers package to install (never installs
+#                             anything); the .ko files land in
+#                             build/modules/<release>/
 #   make modules-rig          the same for each kernel of the QEMU rig that is
 #                             there (tests/vm/kernel-info), into
 #                             build/modules/<6.1|6.12|debug|rt>/
@@ -10,17 +13,22 @@
 #                             headers with W=1 and sparse (C=1), no simulator
 #                             code in mcp2510.ko, and checkpatch.pl --strict
 #                             on every kernel source
-#   make install [KDIR=dir]   mcp2510.ko into <modules>/extra, then depmod
-#                             (INSTALL_MOD_PATH=dir stages it under dir)
+#   make install [KDIR=dir]   mcp2510.ko into <modules>/extra, then depmod;
+#                             DESTDIR=dir (or INSTALL_MOD_PATH=dir) stages it
+#                             under dir, without depmod (a package runs it on
+#                             the target)
+#   make uninstall [KDIR=dir] removes what make install (and
+#                             make install-userspace) put there, then depmod
 #
 # Every build runs in build/kbuild/<tag>/, a tree of symlinks to the
 # sources, so builds for several kernels never share objects and the
 # source tree stays clean.
 
-RUNNING_KDIR := /lib/modules/$(shell uname -r)/build
-NEWEST_HEADERS = $(shell ls -d /usr/src/linux-headers-*-amd64 2>/dev/null | \
-		   sort -V | tail -n 1)
-KDIR ?= $(if $(wildcard $(RUNNING_KDIR)/Makefile),$(RUNNING_KDIR),$(NEWEST_HEADERS))
+# The kernel make modules, install and uninstall are for unless KDIR= says
+# otherwise.  tests/install/ sets these two to play a machine without headers.
+MODULES_RELEASE ?= $(shell uname -r)
+MODULES_KDIR_DEFAULT ?= /lib/modules/$(MODULES_RELEASE)/build
+KDIR ?= $(MODULES_KDIR_DEFAULT)
 # The release modules built against KDIR $(1) load into (vermagic).
 kernel_release = $(shell sed -n 's/.*UTS_RELEASE "\(.*\)"/\1/p' \
 		   $(1)/include/generated/utsrelease.h 2>/dev/null)
@@ -52,17 +60,33 @@ define kbuild_modules
 	cp $(KBUILD_TREES)/$(2)/*.ko $(MODULES_OUT)/$(2)/
 endef
 
-.PHONY: modules modules-rig modules-check install modules-deps checkpatch
+# The package holding the build tree of kernel release $(1): Raspberry Pi
+# OS names its kernels 6.12.25+rpt-rpi-2712 (bookworm on: the package is
+# linux-headers-rpi-<flavour>) or 6.1.21-v8+ (bullseye and before:
+# raspberrypi-kernel-headers); Debian and Ubuntu linux-headers-<release>.
+headers_package = $(or \
+	$(if $(findstring +rpt-rpi-,$(1)),linux-headers-rpi-$(lastword $(subst +rpt-rpi-, ,$(1)))), \
+	$(if $(filter %+,$(1)),raspberrypi-kernel-headers), \
+	linux-headers-$(1))
+
+# $(call need_kdir,TARGET): one shell command that stops TARGET when KDIR
+# is no kernel build tree, naming what to install.  It installs nothing: a
+# plain build must not run apt-get (make deps and make check do that).
+need_kdir = test -f $(KDIR)/Makefile || { \
+	echo "$(1): no kernel build tree at $(KDIR)" >&2; \
+	if [ "$(KDIR)" = "$(MODULES_KDIR_DEFAULT)" ]; then \
+		echo "$(1): install the running kernel's headers, package $(call headers_package,$(MODULES_RELEASE))" >&2; \
+		echo "$(1): (see docs/install.md), or build for another kernel with KDIR=<its build tree>" >&2; \
+	else \
+		echo "$(1): KDIR must be a kernel build tree (with its Makefile)" >&2; \
+	fi; exit 1; }
+
+.PHONY: modules modules-rig modules-check install uninstall modules-deps checkpatch
 modules-deps:
 	@$(ENSURE) $(KERNEL_PACKAGES)
-	@[ -n "$(KDIR)" ] || $(ENSURE) linux-headers-amd64
 
-# KDIR is looked up again after modules-deps may have installed headers.
-modules: modules-deps
-	@$(MAKE) --no-print-directory modules-for KDIR='$(or $(KDIR),$(NEWEST_HEADERS))'
-
-.PHONY: modules-for
-modules-for:
+modules:
+	@$(call need_kdir,modules)
 	$(call kbuild_modules,$(KDIR),$(call kernel_release,$(KDIR)))
 
 # The rig's kernels (tests/vm/vm.mk's VM_KERNELS when set).
@@ -81,19 +105,39 @@ modules-rig-one:
 
 # ---- install (SBC users; DKMS uses dkms.conf at the top level) ----------
 
-install: modules-deps
-	@$(MAKE) --no-print-directory install-for KDIR='$(or $(KDIR),$(NEWEST_HEADERS))'
+# A staged install (DESTDIR or INSTALL_MOD_PATH) skips depmod: the indexes it
+# would write there describe that one module and would replace the target's.
+INSTALL_MOD_PATH ?= $(DESTDIR)
+MOD_ROOT = $(patsubst %/,%,$(INSTALL_MOD_PATH))
+# The release to uninstall from: KDIR's, or the running kernel's when its
+# headers are gone already (uninstall needs no build tree).
+INSTALL_RELEASE = $(or $(call kernel_release,$(KDIR)),$(if \
+	$(filter $(KDIR),$(MODULES_KDIR_DEFAULT)),$(MODULES_RELEASE)))
+# Where modules_install puts mcp2510.ko; kbuild compresses it (.ko.xz,
+# .ko.zst, .ko.gz) when the kernel's config asks for that.
+INSTALLED_MODULE_DIR = $(MOD_ROOT)/lib/modules/$(INSTALL_RELEASE)/extra
+run_depmod = $(if $(MOD_ROOT),@echo "$(1): staged under $(MOD_ROOT): depmod is for the target to run",depmod -a $(INSTALL_RELEASE))
 
-.PHONY: install-for
-install-for:
-	@test -f $(KDIR)/Makefile || { \
-		echo "install: no kernel build tree at '$(KDIR)' (set KDIR=)" >&2; exit 1; }
+install:
+	@$(call need_kdir,install)
 	@$(call kbuild_tree,$(KBUILD_TREES)/install,Kbuild uapi driver)
 	$(MAKE) -C $(KDIR) M=$(KBUILD_TREES)/install MCP2510_DRIVER_ONLY=1 modules
 	$(MAKE) -C $(KDIR) M=$(KBUILD_TREES)/install MCP2510_DRIVER_ONLY=1 \
-		INSTALL_MOD_DIR=extra modules_install
-	depmod $(if $(INSTALL_MOD_PATH),-b $(INSTALL_MOD_PATH)) -a \
-		$(call kernel_release,$(KDIR))
+		INSTALL_MOD_DIR=extra INSTALL_MOD_PATH=$(MOD_ROOT) \
+		DEPMOD=true modules_install
+	$(call run_depmod,install)
+
+# The module, and the directories install made when nothing else is in them
+# (never lib/modules itself nor anything above the staging directory).
+uninstall: uninstall-userspace
+	@[ -n "$(INSTALL_RELEASE)" ] || { \
+		echo "uninstall: which kernel? KDIR=$(KDIR) is no kernel build tree" >&2; exit 1; }
+	rm -f $(addprefix $(INSTALLED_MODULE_DIR)/mcp2510.ko,"" .xz .zst .gz)
+	@d=$(INSTALLED_MODULE_DIR); while [ "$$d" != "$(MOD_ROOT)/lib/modules" ] && \
+		rmdir "$$d" 2>/dev/null; do d=$${d%/*}; done; \
+	for d in "$(MOD_ROOT)/lib/modules" "$(MOD_ROOT)/lib"; do \
+		[ -z "$(MOD_ROOT)" ] || rmdir "$$d" 2>/dev/null || break; done
+	$(call run_depmod,uninstall)
 
 # ---- modules-check --------------------------------------------------------
 

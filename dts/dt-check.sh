@@ -10,12 +10,16 @@
 #   - the merged tree, dumped back to .dts and recompiled, passes dt-validate
 #     against dts/bindings with nothing reported (dt-validate exits 0 on
 #     findings, so its output is what counts);
-#   - the CAN node is there and no enabled sibling shares its chip select;
-#   - Raspberry Pi style parameters (__overrides__) point at properties that
-#     exist, and setting them changes those properties in the merged tree.
+#   - the CAN node is there, its oscillator within the driver's range, and
+#     no enabled sibling shares its chip select;
+#   - each Raspberry Pi style parameter (__overrides__) is set on its own as
+#     the firmware would (dts/overlay-params.py), the result applied again,
+#     and what the parameter changes read back from the merged tree with
+#     fdtget; that tree passes all of the above too.
 # Every dts/test/bad/*.dts must fail that same pipeline, with output that
 # contains the text of its "expect:" line: failing for another reason is a
-# failure too.
+# failure too; so must every parameter use in dts/test/bad-params.  The
+# binding must carry mainline's $id and state the driver's oscillator range.
 set -eu
 
 if [ $# -ne 2 ]; then
@@ -26,7 +30,7 @@ out=$1
 bin=$2
 here=$(cd "$(dirname "$0")" && pwd)
 
-mkdir -p "$out/overlays" "$out/merged" "$out/bad" "$out/log"
+mkdir -p "$out/overlays" "$out/params" "$out/merged" "$out/bad" "$out/log"
 
 passed=0
 failed=0
@@ -37,6 +41,20 @@ fail() { failed=$((failed + 1)); echo "  FAIL  $1"; }
 # chip select, and the base tree's "gpio" label (the Raspberry Pi's name)
 # looks like a gpios property to dtc inside __symbols__: both are expected.
 DUMP_FLAGS="-W no-unique_unit_address -W no-gpios_property"
+
+# A fragment whose __overlay__ is renamed __dormant__ (off until a parameter
+# turns it on) has a unit name and no reg: dtc says so, as it does for the
+# Raspberry Pi's own overlays, which are built without that warning too.
+# The merged tree is still checked for it.
+OVERLAY_FLAGS="-W no-unit_address_vs_reg"
+
+# The oscillator range the driver accepts (driver/core/mcp2510_core.h).
+osc_limit() {
+	sed -n "s/^#define MCP2510_OSC_$1_HZ[[:space:]]*\([0-9]*\).*/\1/p" \
+		"$here/../driver/core/mcp2510_core.h"
+}
+OSC_MIN=$(osc_limit MIN)
+OSC_MAX=$(osc_limit MAX)
 
 # dt-extract-example wraps each example in a node with #address-cells and a
 # made-up interrupt controller, both of which dtc comments on.
@@ -107,6 +125,18 @@ check_can_node() (
 	is_enabled "$dtb" "$found" || { echo "$found is disabled"; exit 1; }
 	is_enabled "$dtb" "$parent" || { echo "SPI controller $parent is disabled"; exit 1; }
 	cs=$(fdtget "$dtb" "$found" reg)
+	# The driver refuses an oscillator outside its range: so does this.
+	clk=$(fdtget -t u "$dtb" "$found" clocks | cut -d' ' -f1)
+	osc=
+	for n in $(nodes "$dtb"); do
+		[ "$(fdtget -t u -d none "$dtb" "$n" phandle)" = "$clk" ] || continue
+		osc=$(fdtget -t u "$dtb" "$n" clock-frequency) || exit 1
+	done
+	[ -n "$osc" ] || { echo "no clock-frequency on the oscillator of $found"; exit 1; }
+	if [ "$osc" -lt "$OSC_MIN" ] || [ "$osc" -gt "$OSC_MAX" ]; then
+		echo "oscillator $osc Hz is outside the driver's $OSC_MIN-$OSC_MAX Hz"
+		exit 1
+	fi
 	for sib in $(fdtget -l "$dtb" "$parent"); do
 		[ "$parent/$sib" != "$found" ] || continue
 		sreg=$(fdtget "$dtb" "$parent/$sib" reg 2>/dev/null) || continue
@@ -118,93 +148,65 @@ check_can_node() (
 	echo "CAN node $found on chip select $cs"
 )
 
-# override_targets DTBO PARAM: the (phandle, "prop:offset") pairs of one
-# __overrides__ parameter as "PHANDLE SPEC" lines. Only the phandle + string
-# form is supported (that is all these overlays use).
-override_targets() {
-	fdtget -t hhx "$1" /__overrides__ "$2" | awk '
-	{
-		n = split($0, b, " ")
-		i = 1
-		while (i <= n) {
-			if (i + 4 > n) { print "bad"; exit }
-			ph = 0
-			for (k = 0; k < 4; k++) ph = ph * 256 + hex(b[i + k])
-			i += 4
-			s = ""
-			while (i <= n && b[i] != "0") { s = s sprintf("%c", hex(b[i])); i++ }
-			if (i > n || s == "") { print "bad"; exit }
-			i++
-			print ph, s
-		}
-	}
-	function hex(h,   v, c, j) {
-		v = 0
-		for (j = 1; j <= length(h); j++) {
-			c = index("0123456789abcdef", substr(h, j, 1)) - 1
-			v = v * 16 + c
-		}
-		return v
-	}'
+# resolve DTB REF: the node path of REF, "&label" (the tree's __symbols__)
+# or a path, which may start with an alias.
+resolve() {
+	case $2 in
+	"&"*) fdtget "$1" /__symbols__ "${2#&}" ;;
+	*) echo "$2" ;;
+	esac
 }
 
-# check_overrides NAME DTBO: each parameter's targets exist; setting the
-# parameter (as the firmware would: patch the overlay, then apply it) shows up
-# in the merged tree.
+# check_params NAME DTBO PARAM[=VALUE]...: set the parameters as the firmware
+# does (dts/overlay-params.py patches the overlay), apply the result with
+# fdtoverlay, and read every setting back from the merged tree with fdtget;
+# the merged tree must still validate and carry one usable CAN node.
+check_params() (
+	name=$1 dtbo=$2
+	shift 2
+	tag=$name.$(echo "$*" | tr ' =' '+-')
+	patched="$out/params/$tag.dtbo"
+	merged="$out/merged/$tag.dtb"
+	expect="$out/log/$tag.expect"
+	run "$out/log/$tag.params" "$bin/python3" "$here/overlay-params.py" apply \
+		"$dtbo" "$patched" "$expect" "$@" || exit 1
+	run "$out/log/$tag.apply" fdtoverlay -i "$out/base.dtb" -o "$merged" "$patched" || exit 1
+	while read -r ref prop value; do
+		path=$(resolve "$merged" "$ref") || { echo "$*: $ref is not in the merged tree"; exit 1; }
+		case $prop in
+		@name)
+			got=${path##*/} ;;
+		@under)
+			under=$(resolve "$merged" "$value") || exit 1
+			got=$value
+			case $path in "$under"/*) ;; *) got=${path%/*} ;; esac ;;
+		*)
+			# value is "u CELLS..." or "s STRING": fdtget's type, then data
+			got="${value%% *} $(fdtget -t "${value%% *}" "$merged" "$path" "$prop")" || exit 1 ;;
+		esac
+		[ "$got" = "$value" ] || { echo "$*: $path $prop is '$got', expected '$value'"; exit 1; }
+		echo "$*: $path $prop $value"
+	done <"$expect"
+	validate "$merged" || exit 1
+	check_can_node "$merged" || exit 1
+)
+
+# check_overrides NAME DTBO: the overlay has the usual parameters, and each
+# of its parameters, set alone (a number one below the overlay's own, or
+# just named when it takes none), does what it says (check_params).
 check_overrides() (
 	name=$1 dtbo=$2
-	params=$(fdtget -p "$dtbo" /__overrides__)
-	for want in oscillator interrupt spimaxfrequency; do
-		echo "$params" | grep -qx "$want" || { echo "parameter $want missing"; exit 1; }
+	run "$out/log/$name.describe" "$bin/python3" "$here/overlay-params.py" describe "$dtbo" || exit 1
+	params="$out/log/$name.describe.out"
+	while read -r param kind cell; do
+		case $kind in
+		value) check_params "$name" "$dtbo" "$param=$((cell - 1))" || exit 1 ;;
+		*) check_params "$name" "$dtbo" "$param" || exit 1 ;;
+		esac
+	done <"$params"
+	for want in oscillator interrupt speed; do
+		grep -q "^$want value " "$params" || { echo "parameter $want missing"; exit 1; }
 	done
-	patched="$out/overlays/$name.params.dtbo"
-	cp "$dtbo" "$patched"
-	expect="$out/log/$name.params.expect"
-	: >"$expect"
-	ovnodes=$(nodes "$dtbo")
-	for param in $params; do
-		targets=$(override_targets "$dtbo" "$param")
-		if echo "$targets" | grep -qx bad; then
-			echo "$param: not <&label>, \"prop:offset\" pairs"
-			exit 1
-		fi
-		value=
-		echo "$targets" | while read -r ph spec; do
-			prop=${spec%%:*}
-			off=${spec#*:}
-			[ "$prop" != "$spec" ] || { echo "$param: '$spec' is not a 32-bit cell (prop:offset)"; exit 1; }
-			node=
-			for n in $ovnodes; do
-				[ "$(fdtget -t u -d none "$dtbo" "$n" phandle)" = "$ph" ] && { node=$n; break; }
-			done
-			[ -n "$node" ] || { echo "$param: phandle $ph is no node of the overlay"; exit 1; }
-			case $node in
-			/fragment@*/__overlay__/*) ;;
-			*) echo "$param: $node is outside the fragments' __overlay__ nodes"; exit 1 ;;
-			esac
-			cells=$(fdtget -t u "$dtbo" "$node" "$prop" 2>/dev/null) ||
-				{ echo "$param: $node has no property $prop"; exit 1; }
-			idx=$((off / 4))
-			[ $((off % 4)) -eq 0 ] && [ "$idx" -lt "$(echo "$cells" | wc -w)" ] ||
-				{ echo "$param: offset $off is outside $node/$prop ($cells)"; exit 1; }
-			# One value per parameter: the first target's cell, minus one.
-			[ -n "$value" ] || value=$(($(echo "$cells" | cut -d' ' -f$((idx + 1))) - 1))
-			new=$(echo "$cells" | awk -v i=$((idx + 1)) -v v="$value" '{ $i = v; print }')
-			# shellcheck disable=SC2086
-			fdtput -t u "$patched" "$node" "$prop" $new || exit 1
-			label=$(fdtget -p "$dtbo" /__symbols__ | while read -r l; do
-				[ "$(fdtget "$dtbo" /__symbols__ "$l")" = "$node" ] && echo "$l"; done | head -n 1)
-			[ -n "$label" ] || { echo "$param: $node has no label"; exit 1; }
-			echo "$param $label $prop $new" >>"$expect"
-		done || exit 1
-	done
-	run "$out/log/$name.params" fdtoverlay -i "$out/base.dtb" -o "$out/merged/$name.params.dtb" "$patched" || exit 1
-	while read -r param label prop new; do
-		path=$(fdtget "$out/merged/$name.params.dtb" /__symbols__ "$label")
-		got=$(fdtget -t u "$out/merged/$name.params.dtb" "$path" "$prop")
-		[ "$got" = "$new" ] || { echo "$param: $path/$prop is '$got', expected '$new'"; exit 1; }
-		echo "$param -> $path $prop = <$got>"
-	done <"$expect"
 )
 
 # check_overlay NAME DTS DIR: the whole pipeline for one overlay source.
@@ -212,7 +214,8 @@ check_overlay() (
 	name=$1 src=$2 dir=$3
 	dtbo="$dir/$name.dtbo"
 	merged="$out/merged/$name.dtb"
-	run "$out/log/$name.dtc" dtc -@ -I dts -O dtb -o "$dtbo" "$src" || exit 1
+	# shellcheck disable=SC2086
+	run "$out/log/$name.dtc" dtc -@ $OVERLAY_FLAGS -I dts -O dtb -o "$dtbo" "$src" || exit 1
 	run "$out/log/$name.apply" fdtoverlay -i "$out/base.dtb" -o "$merged" "$dtbo" || exit 1
 	# The readable form of the result, for people; dtc checks it on the way.
 	# shellcheck disable=SC2086
@@ -249,7 +252,7 @@ else
 	exit 1
 fi
 
-for binding in "$here"/bindings/*.yaml; do
+for binding in $(find "$here/bindings" -name '*.yaml' | sort); do
 	grep -q "^examples:" "$binding" || continue
 	b=$(basename "$binding" .yaml)
 	ex="$out/log/$b.example"
@@ -257,11 +260,27 @@ for binding in "$here"/bindings/*.yaml; do
 	if "$bin/dt-extract-example" "$binding" >"$ex.dts" &&
 		run "$ex" dtc $EXAMPLE_FLAGS -I dts -O dtb -o "$ex.dtb" "$ex.dts" &&
 		validate "$ex.dtb"; then
-		pass "example in bindings/$b.yaml"
+		pass "example in ${binding#"$here"/}"
 	else
-		fail "example in bindings/$b.yaml"
+		fail "example in ${binding#"$here"/}"
 	fi
 done
+
+# The binding stands in for mainline's: same $id, and the oscillator range
+# it states is the one the driver enforces.
+binding="$here/bindings/net/can/microchip,mcp251x.yaml"
+if grep -qx '$id: http://devicetree.org/schemas/net/can/microchip,mcp251x.yaml#' "$binding"; then
+	pass "binding \$id is mainline's net/can/microchip,mcp251x.yaml"
+else
+	fail "binding \$id is not mainline's net/can/microchip,mcp251x.yaml"
+fi
+range="from $((OSC_MIN / 1000000)) MHz to $((OSC_MAX / 1000000)) MHz"
+if [ -n "$OSC_MIN" ] && [ -n "$OSC_MAX" ] &&
+	tr -s ' \n' ' ' <"$binding" | grep -q "$range"; then
+	pass "binding states the driver's oscillator range ($range)"
+else
+	fail "binding does not state the driver's oscillator range ($range)"
+fi
 
 echo "dt-check: overlays"
 count=0
@@ -269,7 +288,7 @@ for src in "$here"/*-overlay.dts; do
 	name=$(basename "$src" -overlay.dts)
 	count=$((count + 1))
 	if check_overlay "$name" "$src" "$out/overlays" >"$out/log/$name.txt" 2>&1; then
-		pass "$name ($(grep '^CAN node' "$out/log/$name.txt" | cut -d' ' -f3-))"
+		pass "$name ($(grep -m 1 '^CAN node' "$out/log/$name.txt" | cut -d' ' -f3-))"
 	else
 		sed 's/^/        /' "$out/log/$name.txt"
 		fail "$name"
@@ -294,6 +313,53 @@ for src in "$here"/test/bad/*.dts; do
 		fail "$name: rejected, but not with: $expect"
 	fi
 done
+
+# Two lines of one overlay, as docs/device-tree.md shows for a second chip on
+# spi1: the renames keep the INT pin and oscillator nodes of each apart.
+two_chips() (
+	dtbo="$out/overlays/mcp2510-mcp2515.dtbo"
+	for p in spi0-0 spi1-0; do
+		run "$out/log/two.$p" "$bin/python3" "$here/overlay-params.py" apply \
+			"$dtbo" "$out/params/two.$p.dtbo" "$out/log/two.$p.expect" "$p" || exit 1
+	done
+	merged="$out/merged/two-chips.dtb"
+	run "$out/log/two.apply" fdtoverlay -i "$out/base.dtb" -o "$merged" \
+		"$out/params/two.spi0-0.dtbo" "$out/params/two.spi1-0.dtbo" || exit 1
+	validate "$merged" || exit 1
+	for p in spi0-0 spi1-0; do
+		case $p in spi0-0) can=/soc/spi@7e204000/can@0 ;; *) can=/soc/spi@7e215080/can@0 ;; esac
+		osc=/mcp2510-mcp2515-$p-osc
+		int=/soc/gpio@7e200000/mcp2510-mcp2515-$p-int
+		[ "$(fdtget -t u "$merged" "$can" clocks)" = "$(fdtget -t u "$merged" "$osc" phandle)" ] ||
+			{ echo "$can does not take its clock from $osc"; exit 1; }
+		[ "$(fdtget -t u "$merged" "$can" pinctrl-0)" = "$(fdtget -t u "$merged" "$int" phandle)" ] ||
+			{ echo "$can does not use the pin configuration $int"; exit 1; }
+		echo "$can: $osc, $int"
+	done
+)
+echo "dt-check: two chips from one overlay"
+if two_chips >"$out/log/two-chips.txt" 2>&1; then
+	pass "mcp2510-mcp2515 spi0-0 + mcp2510-mcp2515 spi1-0: two chips, each its own oscillator and INT pin"
+else
+	sed 's/^/        /' "$out/log/two-chips.txt"
+	fail "mcp2510-mcp2515 spi0-0 + mcp2510-mcp2515 spi1-0"
+fi
+
+echo "dt-check: parameter uses (dts/test/bad-params: each must be rejected)"
+while read -r name args; do
+	case $name in "" | "#"*) continue ;; esac
+	expect=${args#*expect: }
+	args=${args%% expect:*}
+	# shellcheck disable=SC2086
+	if check_params "$name" "$out/overlays/$name.dtbo" $args >"$out/log/bad-params.txt" 2>&1; then
+		fail "$name $args: accepted, should fail with: $expect"
+	elif grep -qF -- "$expect" "$out/log/bad-params.txt"; then
+		pass "$name $args: rejected ($expect)"
+	else
+		sed 's/^/        /' "$out/log/bad-params.txt"
+		fail "$name $args: rejected, but not with: $expect"
+	fi
+done <"$here/test/bad-params"
 
 echo "dt-check: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -4,6 +4,7 @@
 #                           soname), build/userspace/bin/mcp2510ctl and
 #                           mcp2510d, build/userspace/libmcp2510.pc
 #   make install-userspace  into $(DESTDIR)$(PREFIX) (default /usr/local)
+#   make uninstall-userspace removes what install-userspace installed
 #   make userspace-check    run the tools on the simulated chip and check
 #                           the shared library exports only its public API
 #
@@ -130,6 +131,20 @@ install-userspace: userspace
 		$(DESTDIR)$(MANDIR)/man$(subst .,,$(suffix $(m)))/ &&) true
 	install -m 644 $(US_UNIT) $(DESTDIR)$(SYSTEMDUNITDIR)/
 	install -m 644 $(addprefix $(TOP)/,$(US_EXAMPLES)) $(DESTDIR)$(US_EXAMPLEDIR)/
+
+# Exactly what install-userspace installs; make uninstall runs it.  In a
+# staging directory (DESTDIR) the directories it made go too, once empty.
+.PHONY: uninstall-userspace
+uninstall-userspace:
+	rm -f $(addprefix $(DESTDIR)$(LIBDIR)/,$(notdir $(US_A) $(US_SO)) \
+		$(US_SONAME) libmcp2510.so pkgconfig/$(notdir $(US_PC))) \
+		$(addprefix $(DESTDIR)$(PREFIX)/bin/,$(notdir $(US_CTL) $(US_DAEMON))) \
+		$(DESTDIR)$(PREFIX)/include/mcp2510.h \
+		$(DESTDIR)$(PREFIX)/include/linux/can/mcp2510.h
+	@[ -z "$(DESTDIR)" ] || for d in $(LIBDIR)/pkgconfig $(PREFIX)/bin \
+			$(PREFIX)/include/linux/can; do \
+		while [ -n "$$d" ] && rmdir "$(DESTDIR)$$d" 2>/dev/null; do d=$${d%/*}; done; \
+	done
 
 userspace-check: userspace
 	@$(ENSURE) can-utils binutils
