@@ -140,9 +140,13 @@ uninstall-userspace:
 		$(US_SONAME) libmcp2510.so pkgconfig/$(notdir $(US_PC))) \
 		$(addprefix $(DESTDIR)$(PREFIX)/bin/,$(notdir $(US_CTL) $(US_DAEMON))) \
 		$(DESTDIR)$(PREFIX)/include/mcp2510.h \
-		$(DESTDIR)$(PREFIX)/include/linux/can/mcp2510.h
+		$(DESTDIR)$(PREFIX)/include/linux/can/mcp2510.h \
+		$(foreach m,$(US_MANS),$(DESTDIR)$(MANDIR)/man$(subst .,,$(suffix $(m)))/$(notdir $(m))) \
+		$(DESTDIR)$(SYSTEMDUNITDIR)/$(notdir $(US_UNIT)) \
+		$(addprefix $(DESTDIR)$(US_EXAMPLEDIR)/,$(notdir $(US_EXAMPLES)))
 	@[ -z "$(DESTDIR)" ] || for d in $(LIBDIR)/pkgconfig $(PREFIX)/bin \
-			$(PREFIX)/include/linux/can; do \
+			$(PREFIX)/include/linux/can $(MANDIR)/man1 $(MANDIR)/man3 \
+			$(MANDIR)/man8 $(SYSTEMDUNITDIR) $(US_EXAMPLEDIR); do \
 		while [ -n "$$d" ] && rmdir "$(DESTDIR)$$d" 2>/dev/null; do d=$${d%/*}; done; \
 	done
 
