@@ -6,6 +6,7 @@
 #   make install-userspace  into $(DESTDIR)$(PREFIX) (default /usr/local)
 #   make userspace-check    run the tools on the simulated chip and check
 #                           the shared library exports only its public API
+#   make userspace-gpiod2-check   the same on build/userspace-gpiod2
 #
 # MCP2510_SIM=0 builds the library without the chip model: the "sim"
 # transport is then refused.  libgpiod's major version, as pkg-config
@@ -42,7 +43,8 @@ US_GPIOD_VERSION := $(or $(shell $(US_PKG_CONFIG) --modversion libgpiod \
 			2>/dev/null),$(shell apt-cache show --no-all-versions \
 			libgpiod-dev 2>/dev/null | sed -n 's/^Version: //p'))
 US_GPIOD_MAJOR := $(or $(filter 1 2,$(firstword $(subst ., ,$(US_GPIOD_VERSION)))),1)
-US_CFLAGS += $(shell $(US_PKG_CONFIG) --cflags libgpiod 2>/dev/null)
+US_GPIOD_CFLAGS := $(shell $(US_PKG_CONFIG) --cflags libgpiod 2>/dev/null)
+US_CFLAGS += $(US_GPIOD_CFLAGS)
 US_LDLIBS := $(or $(shell $(US_PKG_CONFIG) --libs libgpiod 2>/dev/null),-lgpiod)
 # the "CHIP:LINE" parsing both backends share, and one backend
 us_gpio_srcs = $(addprefix $(US_DIR)/lib/,gpio_spec.c gpio_int_v$(1).c)
@@ -78,7 +80,7 @@ userspace: $(US_A) $(US_SO) $(US_CTL) $(US_DAEMON) $(US_PC)
 # (its headers in include/, its libgpiod.pc in pkgconfig/).
 US_GPIOD_DIR := $(BUILD)/libgpiod
 $(US_GPIOD_DIR)/v%/pkgconfig/libgpiod.pc:
-	@$(TOP)/scripts/fetch-libgpiod $* >/dev/null
+	@$(TOP)/scripts/fetch-libgpiod $* $(US_GPIOD_DIR) >/dev/null
 
 userspace-gpiod2: $(US_GPIOD_DIR)/v2/pkgconfig/libgpiod.pc
 	@$(MAKE) --no-print-directory userspace US_OUT=$(BUILD)/userspace-gpiod2 \
@@ -155,7 +157,14 @@ userspace-check: userspace
 	@$(ENSURE) can-utils binutils
 	@$(TOP)/$(US_DIR)/check-userspace $(US_OUT) $(TOP)/$(US_DIR)/include/mcp2510.h
 
-CHECK_STEPS += userspace-check
+# the same checks on the libgpiod 2 build
+.PHONY: userspace-gpiod2-check
+userspace-gpiod2-check: userspace-gpiod2
+	@$(MAKE) --no-print-directory userspace-check \
+		US_OUT=$(BUILD)/userspace-gpiod2 \
+		PKG_CONFIG_PATH=$(US_GPIOD_DIR)/v2/pkgconfig
+
+CHECK_STEPS += userspace-check userspace-gpiod2-check
 
 # The rig copies build/userspace/{bin,lib} into the guest, and the
 # libgpiod 2 build of mcp2510ctl with its libgpiod: build them first.
@@ -198,6 +207,9 @@ ifneq ($(1),$(US_GPIOD_MAJOR))
 unit-deps: $(US_GPIOD_DIR)/v$(1)/pkgconfig/libgpiod.pc
 $(addprefix $(BUILD)/%/obj/,$(US_UNIT_GPIOD_OBJS_$(1))): UNIT_CFLAGS += \
 	-I$(US_GPIOD_DIR)/v$(1)/include
+else
+$(addprefix $(BUILD)/%/obj/,$(US_UNIT_GPIOD_OBJS_$(1))): UNIT_CFLAGS += \
+	$(US_GPIOD_CFLAGS)
 endif
 endef
 $(foreach v,1 2,$(eval $(call US_UNIT_GPIOD_HEADERS,$(v))))
