@@ -9,16 +9,17 @@
 #   make userspace-gpiod2-check   the same on build/userspace-gpiod2
 #
 # MCP2510_SIM=0 builds the library without the chip model: the "sim"
-# transport is then refused.  libgpiod's major version, as pkg-config
-# gives it, picks the INT backend: gpio_int_v1.c or gpio_int_v2.c.
-# PKG_CONFIG_PATH=<dir of a libgpiod.pc> builds against another libgpiod,
-# and US_OUT=<dir> builds into a directory of its own:
+# transport is then refused.  The driver core is compiled from core.mk's
+# CORE_SRCS and CORE_USER_SRCS, the model from sim.mk's SIM_SRCS.
+#
+# libgpiod's major version, as pkg-config gives it, picks the INT
+# backend: gpio_int_v1.c or gpio_int_v2.c.  PKG_CONFIG_PATH=<dir of a
+# libgpiod.pc> builds against another libgpiod, US_OUT=<dir> into a
+# directory of its own:
 #
 #   make userspace-gpiod2   build/userspace-gpiod2/ against the libgpiod 2
 #                           that scripts/fetch-libgpiod 2 unpacks under
 #                           build/libgpiod/v2 (Debian 13's packages)
-#  The driver core is compiled from core.mk's
-# CORE_SRCS and CORE_USER_SRCS, the model from sim.mk's SIM_SRCS.
 
 US_DIR := userspace
 US_OUT ?= $(BUILD)/userspace
@@ -191,9 +192,10 @@ US_UNIT_CTL_SRCS := $(filter-out %/mcp2510ctl.c,$(US_CTL_SRCS)) \
 US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(wildcard \
 			$(TOP)/tests/unit/test_userspace_*.c \
 			$(TOP)/tests/unit/userspace_*.c)) \
-		$(patsubst %.c,%.o,$(US_LIB_SRCS) $(US_DIR)/lib/sim_transport.c \
-			$(US_DIR)/lib/sim_absent.c $(US_TOOL_SRCS) $(US_CTL_SRCS) \
-			$(US_DAEMON_SRCS) $(call us_gpio_srcs,1) $(call us_gpio_srcs,2))
+		$(patsubst %.c,%.o,$(sort $(US_LIB_SRCS) \
+			$(US_DIR)/lib/sim_transport.c $(US_DIR)/lib/sim_absent.c \
+			$(US_TOOL_SRCS) $(US_CTL_SRCS) $(US_DAEMON_SRCS) \
+			$(call us_gpio_srcs,1) $(call us_gpio_srcs,2)))
 $(addprefix $(BUILD)/%/obj/,$(US_UNIT_OBJS)): UNIT_CFLAGS += \
 	-I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib -I$(TOP)/$(US_DIR)/tools
 
