@@ -7,13 +7,23 @@
 #   make uninstall-userspace removes what install-userspace installed
 #   make userspace-check    run the tools on the simulated chip and check
 #                           the shared library exports only its public API
+#   make userspace-gpiod2-check   the same on build/userspace-gpiod2
 #
 # MCP2510_SIM=0 builds the library without the chip model: the "sim"
 # transport is then refused.  The driver core is compiled from core.mk's
 # CORE_SRCS and CORE_USER_SRCS, the model from sim.mk's SIM_SRCS.
+#
+# libgpiod's major version, as pkg-config gives it, picks the INT
+# backend: gpio_int_v1.c or gpio_int_v2.c.  PKG_CONFIG_PATH=<dir of a
+# libgpiod.pc> builds against another libgpiod, US_OUT=<dir> into a
+# directory of its own:
+#
+#   make userspace-gpiod2   build/userspace-gpiod2/ against the libgpiod 2
+#                           that scripts/fetch-libgpiod 2 unpacks under
+#                           build/libgpiod/v2 (Debian 13's packages)
 
 US_DIR := userspace
-US_OUT := $(BUILD)/userspace
+US_OUT ?= $(BUILD)/userspace
 US_OBJ := $(US_OUT)/obj
 US_VERSION := 0.1.0
 US_SOVERSION := 0
@@ -30,10 +40,22 @@ US_CPPFLAGS := -I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib \
 	       -I$(TOP)/tests/sim
 US_CFLAGS := $(CSTD) $(WARN) -O2 -g -fPIC -fvisibility=hidden \
 	     -D_FORTIFY_SOURCE=2
-US_LDLIBS := -lgpiod
+
+# Before libgpiod-dev is installed (make deps), the version apt offers.
+US_PKG_CONFIG := $(if $(PKG_CONFIG_PATH),PKG_CONFIG_PATH='$(PKG_CONFIG_PATH)') \
+		 pkg-config
+US_GPIOD_VERSION := $(or $(shell $(US_PKG_CONFIG) --modversion libgpiod \
+			2>/dev/null),$(shell apt-cache show --no-all-versions \
+			libgpiod-dev 2>/dev/null | sed -n 's/^Version: //p'))
+US_GPIOD_MAJOR := $(or $(filter 1 2,$(firstword $(subst ., ,$(US_GPIOD_VERSION)))),1)
+US_GPIOD_CFLAGS := $(shell $(US_PKG_CONFIG) --cflags libgpiod 2>/dev/null)
+US_CFLAGS += $(US_GPIOD_CFLAGS)
+US_LDLIBS := $(or $(shell $(US_PKG_CONFIG) --libs libgpiod 2>/dev/null),-lgpiod)
+# the "CHIP:LINE" parsing both backends share, and one backend
+us_gpio_srcs = $(addprefix $(US_DIR)/lib/,gpio_spec.c gpio_int_v$(1).c)
 
 US_LIB_SRCS := $(addprefix $(US_DIR)/lib/,open.c config.c run.c events.c \
-		inspect.c spidev.c gpio_int.c)
+		inspect.c spidev.c) $(call us_gpio_srcs,$(US_GPIOD_MAJOR))
 US_SIM_OBJ := $(US_OBJ)/sim-transport.o
 ifeq ($(MCP2510_SIM),1)
 US_SIM_PARTS := $(US_DIR)/lib/sim_transport.c $(SIM_SRCS)
@@ -59,8 +81,19 @@ US_MANS := $(addprefix $(US_DIR)/man/,mcp2510ctl.1 libmcp2510.3 mcp2510d.8)
 US_EXAMPLES := $(addprefix $(US_DIR)/systemd/,80-mcp2510-vcan0.netdev \
 		80-mcp2510-vcan0.network vcan0.conf)
 
-.PHONY: userspace userspace-deps install-userspace userspace-check
+.PHONY: userspace userspace-deps install-userspace userspace-check \
+	userspace-gpiod2
 userspace: $(US_A) $(US_SO) $(US_CTL) $(US_DAEMON) $(US_PC) $(US_UNIT)
+
+# A libgpiod of the other major version, unpacked under build/libgpiod/vN
+# (its headers in include/, its libgpiod.pc in pkgconfig/).
+US_GPIOD_DIR := $(BUILD)/libgpiod
+$(US_GPIOD_DIR)/v%/pkgconfig/libgpiod.pc:
+	@$(TOP)/scripts/fetch-libgpiod $* $(US_GPIOD_DIR) >/dev/null
+
+userspace-gpiod2: $(US_GPIOD_DIR)/v2/pkgconfig/libgpiod.pc
+	@$(MAKE) --no-print-directory userspace US_OUT=$(BUILD)/userspace-gpiod2 \
+		PKG_CONFIG_PATH=$(US_GPIOD_DIR)/v2/pkgconfig
 
 userspace-deps:
 	@$(ENSURE) $(US_PACKAGES)
@@ -92,6 +125,14 @@ $(US_CTL): $(call us_objs,$(US_CTL_SRCS) $(US_TOOL_SRCS)) $(US_A)
 $(US_DAEMON): $(call us_objs,$(US_DAEMON_SRCS) $(US_TOOL_SRCS)) $(US_A)
 	@mkdir -p $(@D)
 	$(CC) $^ $(US_LDLIBS) -o $@
+
+# A build directory switched to another libgpiod rebuilds its backend,
+# and with it the library and the tools, never mixing the two.
+$(US_OUT)/gpiod: FORCE
+	@mkdir -p $(@D)
+	@echo '$(US_GPIOD_VERSION) $(US_CFLAGS) $(US_LDLIBS)' | cmp -s - $@ || \
+		echo '$(US_GPIOD_VERSION) $(US_CFLAGS) $(US_LDLIBS)' > $@
+$(call us_objs,$(call us_gpio_srcs,1) $(call us_gpio_srcs,2)): $(US_OUT)/gpiod
 
 # Rebuild the .pc when PREFIX or LIBDIR change.
 $(US_OUT)/prefix: FORCE
@@ -154,20 +195,34 @@ userspace-check: userspace
 	@$(ENSURE) can-utils binutils
 	@$(TOP)/$(US_DIR)/check-userspace $(US_OUT) $(TOP)/$(US_DIR)/include/mcp2510.h
 
-CHECK_STEPS += userspace-check
+# the same checks on the libgpiod 2 build
+.PHONY: userspace-gpiod2-check
+userspace-gpiod2-check: userspace-gpiod2
+	@$(MAKE) --no-print-directory userspace-check \
+		US_OUT=$(BUILD)/userspace-gpiod2 \
+		PKG_CONFIG_PATH=$(US_GPIOD_DIR)/v2/pkgconfig
 
-# The rig copies build/userspace/{bin,lib} into the guest: build them first.
-VMTEST_DEPS += userspace
+CHECK_STEPS += userspace-check userspace-gpiod2-check
+
+# The rig copies build/userspace/{bin,lib} into the guest, and the
+# libgpiod 2 build of mcp2510ctl with its libgpiod: build them first.
+VMTEST_DEPS += userspace userspace-gpiod2
 
 # ---- the cmocka suites of tests/unit/unit.mk ----------------------------
 # Source lists the suites' lines in unit.mk name.  Their sources need the
-# userspace include paths, and the transport suite links with the system
-# calls and libgpiod wrapped by its mocks (and without the chip model).
+# userspace include paths, and the transport suites link with the system
+# calls and libgpiod wrapped by their mocks (and without the chip model):
+# test_userspace_transport has libgpiod 1's backend, test_userspace_gpio_v2
+# libgpiod 2's, each built against the headers of its libgpiod (the host's,
+# or the one under build/libgpiod when the host has the other).
 US_UNIT_LIB_SRCS := $(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS) \
 		    $(US_DIR)/lib/sim_transport.c $(SIM_SRCS)
 US_UNIT_TEXT_SRCS := $(US_TOOL_SRCS) $(US_UNIT_LIB_SRCS)
-US_UNIT_TRANSPORT_SRCS := $(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS) \
-			  $(US_DIR)/lib/sim_absent.c
+us_unit_transport_srcs = $(filter-out %/gpio_spec.c %/gpio_int_v$(US_GPIOD_MAJOR).c,\
+			$(US_LIB_SRCS)) $(call us_gpio_srcs,$(1)) \
+			$(CORE_SRCS) $(CORE_USER_SRCS) $(US_DIR)/lib/sim_absent.c
+US_UNIT_TRANSPORT_SRCS := $(call us_unit_transport_srcs,1)
+US_UNIT_GPIO_V2_SRCS := $(call us_unit_transport_srcs,2)
 US_UNIT_CTL_SRCS := $(filter-out %/mcp2510ctl.c,$(US_CTL_SRCS)) \
 		    $(US_DIR)/tools/bridge.c $(US_UNIT_TEXT_SRCS)
 
@@ -175,19 +230,54 @@ US_UNIT_BRIDGE_SRCS := $(US_DIR)/tools/bridge.c $(US_UNIT_LIB_SRCS)
 US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(wildcard \
 			$(TOP)/tests/unit/test_userspace_*.c \
 			$(TOP)/tests/unit/userspace_*.c)) \
-		$(patsubst %.c,%.o,$(US_LIB_SRCS) $(US_DIR)/lib/sim_transport.c \
-			$(US_DIR)/lib/sim_absent.c $(US_TOOL_SRCS) $(US_CTL_SRCS) \
-			$(US_DAEMON_SRCS))
+		$(patsubst %.c,%.o,$(sort $(US_LIB_SRCS) \
+			$(US_DIR)/lib/sim_transport.c $(US_DIR)/lib/sim_absent.c \
+			$(US_TOOL_SRCS) $(US_CTL_SRCS) $(US_DAEMON_SRCS) \
+			$(call us_gpio_srcs,1) $(call us_gpio_srcs,2)))
 $(addprefix $(BUILD)/%/obj/,$(US_UNIT_OBJS)): UNIT_CFLAGS += \
 	-I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib -I$(TOP)/$(US_DIR)/tools
+
+# The objects that include gpiod.h, by libgpiod major version.
+US_UNIT_GPIOD_OBJS_1 := $(US_DIR)/lib/gpio_int_v1.o \
+			tests/unit/test_userspace_transport.o
+US_UNIT_GPIOD_OBJS_2 := $(US_DIR)/lib/gpio_int_v2.o \
+			tests/unit/test_userspace_gpio_v2.o
+define US_UNIT_GPIOD_HEADERS
+ifneq ($(1),$(US_GPIOD_MAJOR))
+unit-deps: $(US_GPIOD_DIR)/v$(1)/pkgconfig/libgpiod.pc
+$(addprefix $(BUILD)/%/obj/,$(US_UNIT_GPIOD_OBJS_$(1))): UNIT_CFLAGS += \
+	-I$(US_GPIOD_DIR)/v$(1)/include
+else
+$(addprefix $(BUILD)/%/obj/,$(US_UNIT_GPIOD_OBJS_$(1))): UNIT_CFLAGS += \
+	$(US_GPIOD_CFLAGS)
+endif
+endef
+$(foreach v,1 2,$(eval $(call US_UNIT_GPIOD_HEADERS,$(v))))
+
 US_WRAPPED := open close ioctl gpiod_chip_open_lookup gpiod_chip_close \
-	gpiod_chip_get_line gpiod_chip_find_line \
+	gpiod_chip_get_line gpiod_chip_find_line gpiod_line_find \
+	gpiod_line_get_chip \
 	gpiod_line_request_falling_edge_events gpiod_line_release \
 	gpiod_line_get_value gpiod_line_event_wait gpiod_line_event_read \
 	gpiod_line_event_get_fd
+US_WRAPPED_V2 := open close ioctl scandir gpiod_is_gpiochip_device \
+	gpiod_chip_open gpiod_chip_close gpiod_chip_get_info \
+	gpiod_chip_info_get_label gpiod_chip_info_free \
+	gpiod_chip_get_line_offset_from_name \
+	gpiod_line_settings_new gpiod_line_settings_free \
+	gpiod_line_settings_set_direction gpiod_line_settings_set_edge_detection \
+	gpiod_line_config_new gpiod_line_config_free \
+	gpiod_line_config_add_line_settings \
+	gpiod_request_config_new gpiod_request_config_free \
+	gpiod_request_config_set_consumer gpiod_chip_request_lines \
+	gpiod_line_request_release gpiod_line_request_get_value \
+	gpiod_line_request_wait_edge_events gpiod_line_request_read_edge_events \
+	gpiod_line_request_get_fd gpiod_edge_event_buffer_new \
+	gpiod_edge_event_buffer_free
 US_EMPTY :=
 US_COMMA := ,
-$(BUILD)/%/test_userspace_transport: UNIT_LDLIBS += \
-	-Wl$(US_COMMA)$(subst $(US_EMPTY) $(US_EMPTY),$(US_COMMA),$(addprefix --wrap=,$(US_WRAPPED)))
+us_wrap = -Wl$(US_COMMA)$(subst $(US_EMPTY) $(US_EMPTY),$(US_COMMA),$(addprefix --wrap=,$(1)))
+$(BUILD)/%/test_userspace_transport: UNIT_LDLIBS += $(call us_wrap,$(US_WRAPPED))
+$(BUILD)/%/test_userspace_gpio_v2: UNIT_LDLIBS += $(call us_wrap,$(US_WRAPPED_V2))
 $(BUILD)/%/test_userspace_text $(BUILD)/%/test_userspace_lib \
 $(BUILD)/%/test_userspace_ctl $(BUILD)/%/test_userspace_bridge: UNIT_LDLIBS += $(US_LDLIBS)

@@ -122,6 +122,7 @@ static struct {
 	int edges;			/* falling edges queued */
 	int wait_result;		/* gpiod_line_event_wait with no edge */
 	int waits_with_timeout, reads, released, chip_closed;
+	int found_anywhere;		/* gpiod_line_find calls */
 	long last_timeout_ms;
 } g;
 
@@ -147,6 +148,24 @@ struct gpiod_line *__wrap_gpiod_chip_get_line(struct gpiod_chip *chip,
 	assert_ptr_equal(chip, FAKE_CHIP);
 	g.offset = offset;
 	return FAKE_LINE;
+}
+
+/* every chip's lines by name: only MCP_INT exists */
+struct gpiod_line *__wrap_gpiod_line_find(const char *name)
+{
+	g.line_name = name;
+	g.found_anywhere++;
+	if (strcmp(name, "MCP_INT")) {
+		errno = ENOENT;
+		return NULL;
+	}
+	return FAKE_LINE;
+}
+
+struct gpiod_chip *__wrap_gpiod_line_get_chip(struct gpiod_line *line)
+{
+	assert_ptr_equal(line, FAKE_LINE);
+	return FAKE_CHIP;
 }
 
 struct gpiod_line *__wrap_gpiod_chip_find_line(struct gpiod_chip *chip,
@@ -421,6 +440,15 @@ static void test_int_line_request(void **state)
 	assert_string_equal(g.chip_name, "/dev/gpiochip1");
 	assert_string_equal(g.line_name, "MCP_INT");
 	mcp2510_int_line_close(l);
+	assert_int_equal(g.found_anywhere, 0);
+	/* a line name alone: looked up on every chip, its chip closed after */
+	g.chip_name = NULL;
+	l = open_line("MCP_INT");
+	assert_int_equal(g.found_anywhere, 1);
+	assert_null(g.chip_name);
+	assert_string_equal(g.consumer, "mcp2510");
+	mcp2510_int_line_close(l);
+	assert_int_equal(g.chip_closed, 3);
 }
 
 static void test_int_line_bad_specs(void **state)
@@ -428,11 +456,24 @@ static void test_int_line_bad_specs(void **state)
 	struct mcp2510_int_line *l;
 
 	(void)state;
-	assert_int_equal(mcp2510_int_line_open("gpiochip0", &l), -EINVAL);
 	assert_int_equal(mcp2510_int_line_open("gpiochip0:", &l), -EINVAL);
 	assert_int_equal(mcp2510_int_line_open(":5", &l), -EINVAL);
+	assert_int_equal(mcp2510_int_line_open("", &l), -EINVAL);
+	/* an offset without its chip */
+	assert_int_equal(mcp2510_int_line_open("25", &l), -EINVAL);
+	assert_null(g.chip_name);
+	assert_int_equal(g.found_anywhere, 0);
 	assert_int_equal(mcp2510_int_line_open("gpiochip0:NOPE", &l), -ENOENT);
 	assert_int_equal(g.chip_closed, 1);
+	/* not a number: a name, which no chip has */
+	assert_int_equal(mcp2510_int_line_open("gpiochip0:25x", &l), -ENOENT);
+	assert_string_equal(g.line_name, "25x");
+	assert_int_equal(mcp2510_int_line_open("NOPE", &l), -ENOENT);
+	assert_int_equal(g.found_anywhere, 1);
+	/* a chip alone is taken for a line name */
+	assert_int_equal(mcp2510_int_line_open("gpiochip0", &l), -ENOENT);
+	assert_string_equal(g.line_name, "gpiochip0");
+	assert_int_equal(g.chip_closed, 2);
 	g.chip_missing = true;
 	assert_int_equal(mcp2510_int_line_open("gpiochip7:1", &l), -ENOENT);
 	g.chip_missing = false;

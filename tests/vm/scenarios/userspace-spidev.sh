@@ -8,7 +8,10 @@
 # sent by mcp2510ctl must reach candump on can0, frames sent by cansend on
 # can0 must come out of "mcp2510ctl dump", and chip 1's INT must have been
 # delivered to Linux while the tool held the line, so the tool was woken by
-# interrupts and not by its polling fallback.
+# interrupts and not by its polling fallback.  Then the same both ways, one
+# frame each, with mcp2510ctl-gpiod2, the build against libgpiod 2 (make
+# userspace-gpiod2), naming the INT line as libgpiod 2 cannot itself: the
+# chip by its label, and the line by its name alone on every chip.
 set -eu
 . /lib/rig.sh
 
@@ -152,6 +155,41 @@ fi
 cat /tmp/err.txt
 grep -q "^mcp2510ctl: INT line gpiochip99:0: .*(spidev:$dev itself opens fine)" \
 	/tmp/err.txt || fail "a missing gpiochip was not named"
+
+echo "== the libgpiod 2 build: mcp2510ctl-gpiod2 <-> can0"
+command -v mcp2510ctl-gpiod2 >/dev/null ||
+	fail "mcp2510ctl-gpiod2 is missing: make userspace-gpiod2"
+# ctl2 INT COMMAND [ARGS]: the libgpiod 2 build on chip 1
+ctl2() {
+	_int=$1
+	shift
+	mcp2510ctl-gpiod2 --device "spidev:$dev" --int "$_int" \
+		--clock 16000000 --variant "$VM_VARIANT" --bitrate 125000 "$@"
+}
+irqs=$(counter 1 irqs_delivered)
+edges=$(counter 1 interrupts)
+dump_start can0 1 /tmp/can0-v2.txt
+ctl2 mcp2510-sim:INT1 send 2A5#C0FFEE ||
+	fail "mcp2510ctl-gpiod2 send with INT on mcp2510-sim:INT1 failed"
+dump_wait
+cat /tmp/can0-v2.txt
+expect_lines /tmp/can0-v2.txt 1
+grep -q ' 2A5 *\[3\] *C0 FF EE$' /tmp/can0-v2.txt ||
+	fail "can0 missed mcp2510ctl-gpiod2's 2A5#C0FFEE"
+expect_grew 1 interrupts "$edges" "send (libgpiod 2)"
+expect_grew 1 irqs_delivered "$irqs" "send (libgpiod 2)"
+irqs=$(counter 1 irqs_delivered)
+# dump returns with its frame: the long timeout only covers a slow guest
+ctl2 INT1 dump --count 1 --timeout 20000 >/tmp/dump-v2.txt &
+ctl_pid=$!
+wait_for dump_ready || fail "mcp2510ctl-gpiod2 dump did not bring chip 1 up with INT1"
+cansend can0 3C3#AB || fail "cansend 3C3#AB failed"
+wait "$ctl_pid" || { cat /tmp/dump-v2.txt; fail "mcp2510ctl-gpiod2 dump failed"; }
+cat /tmp/dump-v2.txt
+expect_lines /tmp/dump-v2.txt 1
+grep -q "^([0-9]*\.[0-9]*) $label 3C3#AB$" /tmp/dump-v2.txt ||
+	fail "mcp2510ctl-gpiod2 dump missed 3C3#AB"
+expect_grew 1 irqs_delivered "$irqs" "dump (libgpiod 2)"
 
 ip link set can0 down
 echo "userspace-spidev: ok"

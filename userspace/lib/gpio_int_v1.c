@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 /*
- * INT through libgpiod (v1 API).  The pin is active low and stays low
- * while any enabled flag is set, so besides falling edges we look at the
- * level: an INT already low when the line is requested, or one that
- * stayed low through a service pass, produces no new edge.
+ * INT through libgpiod 1 (gpio_int_v2.c is the libgpiod 2 backend; the
+ * build picks one).  The pin is active low and stays low while any
+ * enabled flag is set, so besides falling edges we look at the level:
+ * an INT already low when the line is requested, or one that stayed low
+ * through a service pass, produces no new edge.
  */
 #define _GNU_SOURCE
 #include <errno.h>
-#include <limits.h>
 #include <stdlib.h>
-#include <string.h>
 #include <gpiod.h>
 
 #include "gpio_int.h"
+#include "gpio_spec.h"
 
 #define CONSUMER "mcp2510"
 
@@ -26,62 +26,59 @@ static int errno_or(int fallback)
 	return errno ? -errno : -fallback;
 }
 
-/* Split "CHIP:LINE" at its last colon (chip paths have none). */
-static int split_spec(const char *spec, char *chip, size_t chip_len,
-		      const char **line)
+/*
+ * The line of @spec, with the chip that owns it in *chip, or NULL with
+ * errno set (ENODEV: no such chip, ENOENT: no such line).  A bare line
+ * name is looked up on every chip, as gpiod_line_find() does.
+ */
+static struct gpiod_line *find_line(const struct mcp2510_gpio_spec *spec,
+				    struct gpiod_chip **chip)
 {
-	const char *colon = strrchr(spec, ':');
-	size_t n;
-
-	if (!colon || colon == spec || !colon[1])
-		return -EINVAL;
-	n = (size_t)(colon - spec);
-	if (n >= chip_len)
-		return -EINVAL;
-	memcpy(chip, spec, n);
-	chip[n] = '\0';
-	*line = colon + 1;
-	return 0;
-}
-
-static struct gpiod_line *find_line(struct gpiod_chip *chip, const char *name)
-{
-	char *end;
-	unsigned long offset;
+	struct gpiod_line *line;
 
 	errno = 0;
-	offset = strtoul(name, &end, 10);
-	if (*end)
-		return gpiod_chip_find_line(chip, name);
-	if (errno || offset > UINT_MAX)
+	if (!spec->chip[0]) {
+		line = gpiod_line_find(spec->line);
+		if (!line) {
+			errno = -errno_or(ENOENT);
+			return NULL;
+		}
+		*chip = gpiod_line_get_chip(line);
+		return line;
+	}
+	*chip = gpiod_chip_open_lookup(spec->chip);
+	if (!*chip) {
+		errno = -errno_or(ENODEV);
 		return NULL;
-	return gpiod_chip_get_line(chip, (unsigned int)offset);
+	}
+	errno = 0;
+	if (spec->by_offset)
+		line = gpiod_chip_get_line(*chip, spec->offset);
+	else
+		line = gpiod_chip_find_line(*chip, spec->line);
+	if (!line) {
+		errno = -errno_or(ENOENT);
+		gpiod_chip_close(*chip);
+	}
+	return line;
 }
 
 int mcp2510_int_line_open(const char *spec, struct mcp2510_int_line **out)
 {
+	struct mcp2510_gpio_spec parsed;
 	struct mcp2510_int_line *l;
-	const char *line_name;
-	char chip_name[PATH_MAX];
 	int ret;
 
-	ret = split_spec(spec, chip_name, sizeof(chip_name), &line_name);
+	ret = mcp2510_gpio_spec_parse(spec, &parsed);
 	if (ret)
 		return ret;
 	l = calloc(1, sizeof(*l));
 	if (!l)
 		return -ENOMEM;
-	errno = 0;
-	l->chip = gpiod_chip_open_lookup(chip_name);
-	if (!l->chip) {
-		ret = errno_or(ENODEV);
-		goto out_free;
-	}
-	errno = 0;
-	l->line = find_line(l->chip, line_name);
+	l->line = find_line(&parsed, &l->chip);
 	if (!l->line) {
-		ret = errno_or(ENOENT);
-		goto out_close;
+		ret = -errno;
+		goto out_free;
 	}
 	errno = 0;
 	if (gpiod_line_request_falling_edge_events(l->line, CONSUMER)) {
