@@ -241,6 +241,13 @@ static void test_messages_name_the_cause(void **state)
 	(void)state;
 	assert_one_line_error(ctl("--device", "sim", "--int", "25", "info", NULL),
 			      EXIT_USAGE, "--int 25: give the INT pin as CHIP:LINE, e.g. gpiochip0:25");
+	assert_one_line_error(ctl("--device", "sim", "--int", "gpiochip0:", "info",
+				  NULL), EXIT_USAGE,
+			      "--int gpiochip0:: give the INT pin as CHIP:LINE");
+	/* a line name alone is looked up on every chip (the sim needs none) */
+	r = ctl("--device", "sim", "--int", "GPIO25", "info", NULL);
+	assert_int_equal(r.status, 0);
+	run_free(&r);
 	/* a bare path is a spidev path */
 	assert_one_line_error(ctl("--device", "/nonexistent/spidev0.0", "info",
 				  NULL), EXIT_FAIL,

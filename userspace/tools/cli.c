@@ -43,8 +43,9 @@ const char cli_device_help[] =
 "  -d, --device DEV    spidev:/dev/spidevB.C (or just the path), sim (a\n"
 "                      simulated chip with an always-acknowledging peer) or\n"
 "                      sim:NAME (a simulated bus shared inside this process)\n"
-"  -i, --int CHIP:LINE INT pin as a GPIO line, e.g. gpiochip0:25; without it\n"
-"                      the chip is polled every 2 ms\n"
+"  -i, --int CHIP:LINE INT pin as a GPIO line, e.g. gpiochip0:25, or a line\n"
+"                      name alone (GPIO25); without it the chip is polled\n"
+"                      every 2 ms\n"
 "  -c, --clock HZ      oscillator, 1M to 25M (default 16M, also 16MHz); the\n"
 "                      CAN clock is half\n"
 "  --variant NAME      mcp2510 (default), mcp2515 or mcp25625\n"
@@ -357,15 +358,22 @@ static int set_device(struct cli_device *d, struct cli_args *a,
 	return 0;
 }
 
-/* "CHIP:LINE", both parts there; the library finds them. */
+/*
+ * "CHIP:LINE" with both parts, or a line name alone (looked up on every
+ * chip); a bare number is an offset without its chip.  The library finds
+ * them.
+ */
 static int set_int_line(struct cli_device *d, struct cli_args *a,
 			const char *value)
 {
 	const char *colon = strrchr(value, ':');
+	bool bare_number = !colon && value[0] &&
+			   strspn(value, "0123456789") == strlen(value);
 
-	if (!colon || colon == value || !colon[1]) {
+	if (!value[0] || bare_number ||
+	    (colon && (colon == value || !colon[1]))) {
 		cli_error(a->err, a->prog,
-			  "--int %s: give the INT pin as CHIP:LINE, e.g. gpiochip0:25 (a GPIO chip, then a line offset or name)",
+			  "--int %s: give the INT pin as CHIP:LINE, e.g. gpiochip0:25 (a GPIO chip, then a line offset or name), or a line name alone, e.g. GPIO25",
 			  value);
 		return -1;
 	}
