@@ -300,11 +300,10 @@ static void sim_bus_arbitrate(struct sim_bus *bus, struct sim_contest *win)
  * The first request on an idle bus, or one still pending when the bus
  * goes idle, sends its start-of-frame bit at once.  A node whose request
  * comes while that bit is on the bus hard-synchronises on its edge and
- * joins the arbitration from the next bit (CAN 2.0B part B 9.1 "Hard
- * synchronization": on the recessive-to-dominant edge after bus idle;
- * 5 "start of frame": "all stations have to synchronize to the leading
- * edge caused by start of frame of the station starting transmission
- * first").  So the arbitration is decided at the end of that bit, among
+ * joins the arbitration from the next bit (CAN 2.0B part B, "Start of
+ * Frame": every station synchronises on the leading edge of the start of
+ * frame of the station that began first; "Hard Synchronization": on the
+ * recessive-to-dominant edge after bus idle).  So the arbitration is decided at the end of that bit, among
  * every request made until then, and the frame's time counts from its
  * start of frame.
  */
@@ -350,7 +349,6 @@ static void sim_bus_judge(struct sim_bus *bus, int sender,
 			  const struct sim_timing *tm, struct sim_verdict *v)
 {
 	struct sim_timing rx;
-
 	unsigned int i;
 
 	v->acked = false;

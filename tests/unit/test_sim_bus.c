@@ -231,8 +231,8 @@ static void test_arbitration_three_chips(void **state)
 /*
  * A request made while another node's start-of-frame bit is on the bus
  * still joins the arbitration: the late node hard-synchronises on that
- * edge and sends its identifier from the next bit on (CAN 2.0B part B
- * 9.1 "Hard synchronization", 5 "start of frame").  Half a bit after
+ * edge and sends its identifier from the next bit on (CAN 2.0B part B,
+ * "Start of Frame" and "Hard Synchronization").  Half a bit after
  * chip 1 asked, chip 0 asks with a lower id and wins, and the frame
  * still starts at chip 1's start of frame.  The same holds for requests
  * pending when the bus goes idle; a request one full bit after the start
