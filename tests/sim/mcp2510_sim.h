@@ -16,9 +16,11 @@
  * calls, so a harness jumps to sim_bus_next_event() or advances by the time
  * a real driver would have waited.
  *
- * Transmit requests made at the same bus time contend in one arbitration:
- * a frame starts at the first sim_bus_advance() after a request, never
- * inside the SPI call that made it.  Callbacks (pins, monitor) run inside
+ * Transmit requests made within the first bit of a start of frame
+ * contend in one arbitration: the start of frame goes out at the first
+ * sim_bus_advance() after the request (or when the bus goes idle),
+ * never inside the SPI call that made it, and the arbitration is decided
+ * one bit later.  Callbacks (pins, monitor) run inside
  * sim_bus_advance() and may do SPI transfers; a nested sim_bus_advance()
  * from a callback does nothing.  Nothing here locks: one caller at a time.
  *
@@ -188,6 +190,18 @@ struct sim_chip {
 	struct sim_counters counters;
 };
 
+/*
+ * A node's bit timing as far as the bus needs it: bit time, the lengths
+ * the CAN oscillator-tolerance conditions use, and whether CNF1-3 obey
+ * the data sheets' rules.  nbt 0: an ideal node (the phantom), which
+ * tolerates whatever the node it talks to tolerates.
+ */
+struct sim_timing {
+	u32 ns;				/* bit time */
+	u8 nbt, ps1, ps2, sjw;		/* time quanta */
+	bool valid;
+};
+
 struct sim_phantom {
 	bool attached;
 	u32 bitrate;			/* 0: the first chip's */
@@ -208,8 +222,12 @@ struct sim_bus {
 	u64 busy_until;
 	struct sim_bus_record cur;
 	int cur_sender;
-	u32 cur_ns;			/* the sender's bit time */
+	struct sim_timing cur_tm;	/* the sender's bit timing */
 	u32 cur_listeners;		/* nodes listening at start of frame (bit per node) */
+	/* a start of frame on the bus, its arbitration still open */
+	bool sof;
+	u64 sof_at;
+	u32 sof_ns;			/* bit time of the node that sent it */
 	struct sim_phantom phantom;
 	struct sim_bus_faults faults;
 	void (*monitor)(void *ctx, const struct sim_bus_record *rec);
@@ -279,11 +297,17 @@ bool sim_chip_bus_off(const struct sim_chip *chip);
 bool sim_chip_ready(const struct sim_chip *chip);		/* start-up over, powered */
 u64 sim_chip_startup_ns(const struct sim_chip *chip);		/* 128 osc cycles */
 /*
- * Bit rate from CNF1-3 and the oscillator, bit/s rounded.  Every CNF
- * value gives some bit time (the chip does not refuse any), so this is
- * never 0 for a powered chip.
+ * Bit rate from CNF1-3 and the oscillator, bit/s rounded; 0 when CNF1-3
+ * break the data sheets' bit timing rules (sim_chip_timing_valid()): the
+ * chip still clocks its bits, but cannot communicate.
  */
 u32 sim_chip_bitrate(const struct sim_chip *chip);
+/*
+ * CNF1-3 obey DS21291 5.8 / DS21801 5.3 "Programming Time Segments" and
+ * AN739's rules: PS2 >= 2 TQ (the information processing time),
+ * PRSEG + PS1 >= PS2, PS2 > SJW.
+ */
+bool sim_chip_timing_valid(const struct sim_chip *chip);
 
 /* ---- Phantom node: a bus participant with no chip ---------------------- */
 

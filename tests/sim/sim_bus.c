@@ -53,14 +53,15 @@ u64 sim_bus_now(const struct sim_bus *bus)
 	return bus->now;
 }
 
+/* a frame on the bus, or a start of frame whose arbitration is still open */
 bool sim_bus_busy(const struct sim_bus *bus)
 {
-	return bus->busy;
+	return bus->busy || bus->sof;
 }
 
 bool sim_bus_idle(const struct sim_bus *bus)
 {
-	return !bus->busy;
+	return !sim_bus_busy(bus);
 }
 
 void sim_bus_set_monitor(struct sim_bus *bus,
@@ -77,6 +78,17 @@ struct sim_bus_faults *sim_bus_faults(struct sim_bus *bus)
 }
 
 /* ---- Phantom node ---------------------------------------------------------- */
+
+/*
+ * The phantom's timing at bit time ns: an ideal node, which tolerates
+ * whatever the node it talks to tolerates.
+ */
+static void sim_phantom_timing(u32 ns, struct sim_timing *t)
+{
+	memset(t, 0, sizeof(*t));
+	t->ns = ns;
+	t->valid = true;
+}
 
 /* bit time the phantom listens at; 0 means it follows whatever is sent */
 static u32 sim_phantom_rx_ns(const struct sim_bus *bus)
@@ -216,7 +228,7 @@ struct sim_contest {
 	int sender;		/* node index, SIM_NODE_PHANTOM, SIM_NO_SENDER */
 	int buf;
 	u32 key;
-	u32 ns;
+	struct sim_timing tm;	/* the sender's */
 	struct can_frame cf;
 };
 
@@ -235,9 +247,9 @@ static bool sim_bus_has_contender(const struct sim_bus *bus)
 /*
  * Lowest arbitration field wins.  Two senders with identical fields
  * cannot be told apart on a real bus; the model lets the lower node
- * index win and the phantom lose such ties.
+ * index win and the phantom lose such ties.  No side effects.
  */
-static void sim_bus_arbitrate(struct sim_bus *bus, struct sim_contest *win)
+static void sim_bus_best(struct sim_bus *bus, struct sim_contest *win)
 {
 	struct can_frame cf;
 	unsigned int i;
@@ -259,7 +271,7 @@ static void sim_bus_arbitrate(struct sim_bus *bus, struct sim_contest *win)
 		win->buf = buf;
 		win->key = key;
 		win->cf = cf;
-		win->ns = sim_chip_bit_ns(chip);
+		sim_chip_timing(chip, &win->tm);
 	}
 	if (sim_phantom_peek(bus, &cf, &ns) &&
 	    (win->sender == SIM_NO_SENDER ||
@@ -267,13 +279,62 @@ static void sim_bus_arbitrate(struct sim_bus *bus, struct sim_contest *win)
 		win->sender = SIM_NODE_PHANTOM;
 		win->key = sim_frame_arbitration_key(&cf);
 		win->cf = cf;
-		win->ns = ns;
+		sim_phantom_timing(ns, &win->tm);
 	}
+}
+
+/* The arbitration at the end of the start-of-frame bit. */
+static void sim_bus_arbitrate(struct sim_bus *bus, struct sim_contest *win)
+{
+	unsigned int i;
+
+	sim_bus_best(bus, win);
 	/* AN739: losers re-arbitrate later, picking their best buffer again */
 	for (i = 0; i < bus->nchips; i++)
 		if ((int)i != win->sender &&
 		    sim_chip_tx_candidate(bus->chips[i]) >= 0)
 			sim_chip_tx_lost(bus->chips[i]);
+}
+
+/*
+ * The first request on an idle bus, or one still pending when the bus
+ * goes idle, sends its start-of-frame bit at once.  A node whose request
+ * comes while that bit is on the bus hard-synchronises on its edge and
+ * joins the arbitration from the next bit (CAN 2.0B part B, "Start of
+ * Frame": every station synchronises on the leading edge of the start of
+ * frame of the station that began first; "Hard Synchronization": on the
+ * recessive-to-dominant edge after bus idle).  So the arbitration is decided at the end of that bit, among
+ * every request made until then, and the frame's time counts from its
+ * start of frame.
+ */
+static void sim_bus_begin_sof(struct sim_bus *bus)
+{
+	struct sim_contest first;
+	unsigned int i;
+
+	sim_bus_best(bus, &first);
+	if (first.sender == SIM_NO_SENDER)
+		return;
+	bus->sof = true;
+	bus->sof_at = bus->now;
+	bus->sof_ns = first.tm.ns;
+	/*
+	 * The edge wakes sleeping chips; only the nodes listening now can
+	 * take part in the frame (one woken by it cannot).
+	 */
+	bus->cur_listeners = 0;
+	for (i = 0; i < bus->nchips; i++) {
+		struct sim_chip *chip = bus->chips[i];
+
+		sim_chip_bus_activity(chip);
+		if (sim_chip_listening(chip))
+			bus->cur_listeners |= 1U << i;
+	}
+}
+
+static u64 sim_bus_sof_end(const struct sim_bus *bus)
+{
+	return bus->sof_at + bus->sof_ns;
 }
 
 /* ---- Frames -------------------------------------------------------------------- */
@@ -283,25 +344,25 @@ struct sim_verdict {
 	bool flagged;		/* an error-active node at another rate objects */
 };
 
-/* How the other nodes react to a frame sent at ns per bit. */
-static void sim_bus_judge(struct sim_bus *bus, int sender, u32 ns,
-			  struct sim_verdict *v)
+/* How the other nodes react to a frame sent with timing tm. */
+static void sim_bus_judge(struct sim_bus *bus, int sender,
+			  const struct sim_timing *tm, struct sim_verdict *v)
 {
+	struct sim_timing rx;
 	unsigned int i;
 
 	v->acked = false;
 	v->flagged = false;
-	bus->cur_listeners = 0;
+	/* the sender is no receiver of its own frame */
+	if (sender >= 0)
+		bus->cur_listeners &= ~(1U << sender);
 	for (i = 0; i < bus->nchips; i++) {
 		struct sim_chip *chip = bus->chips[i];
 
-		if ((int)i == sender)
+		if (!(bus->cur_listeners & (1U << i)) || !sim_chip_listening(chip))
 			continue;
-		sim_chip_bus_activity(chip);
-		if (!sim_chip_listening(chip))
-			continue;
-		bus->cur_listeners |= 1U << i;
-		if (sim_rates_match(sim_chip_bit_ns(chip), ns)) {
+		sim_chip_timing(chip, &rx);
+		if (sim_timings_match(&rx, tm)) {
 			/* listen-only nodes never drive the ACK slot */
 			if (chip->opmode == MCP2510_MODE_NORMAL)
 				v->acked = true;
@@ -313,7 +374,8 @@ static void sim_bus_judge(struct sim_bus *bus, int sender, u32 ns,
 	if (bus->phantom.attached && sender != SIM_NODE_PHANTOM) {
 		u32 pns = sim_phantom_rx_ns(bus);
 
-		if (!pns || sim_rates_match(pns, ns))
+		sim_phantom_timing(pns, &rx);
+		if (!pns || sim_timings_match(&rx, tm))
 			v->acked = true;
 		else
 			v->flagged = true;
@@ -328,14 +390,17 @@ static void sim_bus_start_frame(struct sim_bus *bus)
 	struct sim_frame_info info;
 	struct sim_verdict v;
 	struct sim_contest win;
+	u64 start = bus->sof_at;
 	u32 error_bit = 0;
 	unsigned int i;
 
+	bus->sof = false;
 	sim_bus_arbitrate(bus, &win);
+	/* every request was withdrawn during the start of frame: nothing follows */
 	if (win.sender == SIM_NO_SENDER)
 		return;
 	sim_frame_measure(&win.cf, &info);
-	sim_bus_judge(bus, win.sender, win.ns, &v);
+	sim_bus_judge(bus, win.sender, &win.tm, &v);
 
 	memset(rec, 0, sizeof(*rec));
 	rec->kind = SIM_REC_ERROR;
@@ -357,18 +422,19 @@ static void sim_bus_start_frame(struct sim_bus *bus)
 	}
 	rec->sender = win.sender;
 	rec->frame = win.cf;
-	rec->bitrate = sim_ns_to_rate(win.ns);
+	rec->bitrate = sim_ns_to_rate(win.tm.ns);
 	rec->bits = rec->cause ? error_bit + SIM_ERROR_FRAME_BITS : info.bits;
 	rec->acked = v.acked;
-	rec->start_ns = bus->now;
-	rec->end_ns = bus->now + (u64)rec->bits * win.ns;
+	rec->start_ns = start;
+	rec->end_ns = start + (u64)rec->bits * win.tm.ns;
 
 	for (i = 0; i < bus->nchips; i++)
-		sim_chip_recovery_account(bus->chips[i], bus->now);
+		sim_chip_recovery_account(bus->chips[i], start);
 	bus->busy = true;
-	bus->busy_until = rec->end_ns;
+	/* a winner much faster than the start of frame cannot end in the past */
+	bus->busy_until = rec->end_ns > bus->now ? rec->end_ns : bus->now;
 	bus->cur_sender = win.sender;
-	bus->cur_ns = win.ns;
+	bus->cur_tm = win.tm;
 	if (win.sender >= 0)
 		sim_chip_tx_start(bus->chips[win.sender], win.buf);
 }
@@ -393,6 +459,7 @@ static bool sim_bus_passive_ack_error(const struct sim_bus *bus)
  */
 static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
 {
+	struct sim_timing rx;
 	unsigned int i;
 
 	for (i = 0; i < bus->nchips; i++) {
@@ -400,7 +467,8 @@ static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
 
 		if (!(bus->cur_listeners & (1U << i)) || !sim_chip_listening(chip))
 			continue;
-		if (valid && sim_rates_match(sim_chip_bit_ns(chip), bus->cur_ns))
+		sim_chip_timing(chip, &rx);
+		if (valid && sim_timings_match(&rx, &bus->cur_tm))
 			sim_chip_rx_ok(chip, &bus->cur.frame);
 		else
 			sim_chip_rx_error(chip);
@@ -461,6 +529,8 @@ u64 sim_bus_next_event(const struct sim_bus *bus)
 
 	if (bus->busy)
 		t = bus->busy_until;
+	else if (bus->sof)
+		t = sim_bus_sof_end(bus);
 	else if (sim_bus_has_contender(bus))
 		t = bus->now;
 	for (i = 0; i < bus->nchips; i++)
@@ -477,7 +547,11 @@ static void sim_bus_step(struct sim_bus *bus)
 		sim_bus_end_frame(bus);
 	for (i = 0; i < bus->nchips; i++)
 		sim_chip_run_events(bus->chips[i]);
-	if (!bus->busy)
+	if (bus->busy)
+		return;
+	if (!bus->sof)
+		sim_bus_begin_sof(bus);
+	else if (bus->now >= sim_bus_sof_end(bus))
 		sim_bus_start_frame(bus);
 }
 

@@ -313,12 +313,24 @@ void sim_chip_bus_activity(struct sim_chip *chip)
 
 /* ---- Bit timing ------------------------------------------------------------- */
 
+/* IPT: the information processing time after the sample point, in quanta */
+#define SIM_IPT_TQ	2
+
 /*
  * DS21291 section 5: TQ = 2 (BRP + 1) / Fosc; a bit is SyncSeg (1 TQ) +
  * PropSeg + PS1 + PS2; with BTLMODE clear PS2 is the greater of PS1 and
  * the information processing time (2 TQ).
+ *
+ * The rules (DS21291 5.8, DS21801 5.3 "Programming Time Segments":
+ * "Prop Seg + Phase Seg 1 >= Phase Seg 2", "Phase Seg 2 > Sync Jump
+ * Width"; AN739 "Rules for setting the bit time": "PS2 >= IPT ... The
+ * IPT = 2 TQ so PS2(min) = 2 TQ", and CNF3's PHSEG2 "from 2 - 8 TQ").
+ * The data sheets' third rule, PropSeg + PS1 >= TDELAY, always holds on
+ * the model's bus, which has no propagation delay.  SAM (three samples,
+ * "should only be used at slower bus rates", AN739 CNF2) and the BRP are
+ * not restricted by any rule the data sheets state.
  */
-u32 sim_chip_bit_ns(const struct sim_chip *chip)
+void sim_chip_timing(const struct sim_chip *chip, struct sim_timing *t)
 {
 	u8 cnf1 = chip->regs[MCP2510_REG_CNF1];
 	u8 cnf2 = chip->regs[MCP2510_REG_CNF2];
@@ -326,22 +338,47 @@ u32 sim_chip_bit_ns(const struct sim_chip *chip)
 	u32 brp = FIELD_GET(MCP2510_CNF1_BRP_MASK, cnf1) + 1;
 	u32 prseg = FIELD_GET(MCP2510_CNF2_PRSEG_MASK, cnf2) + 1;
 	u32 ps1 = FIELD_GET(MCP2510_CNF2_PHSEG1_MASK, cnf2) + 1;
+	u32 sjw = FIELD_GET(MCP2510_CNF1_SJW_MASK, cnf1) + 1;
 	u32 ps2, cycles;
 
 	if (cnf2 & MCP2510_CNF2_BTLMODE)
 		ps2 = FIELD_GET(MCP2510_CNF3_PHSEG2_MASK, cnf3) + 1;
 	else
-		ps2 = ps1 > 2 ? ps1 : 2;
-	cycles = 2 * brp * (1 + prseg + ps1 + ps2);
-	return sim_div_u64((u64)cycles * SIM_NS_PER_SEC + chip->osc_hz / 2,
-			   chip->osc_hz);
+		ps2 = ps1 > SIM_IPT_TQ ? ps1 : SIM_IPT_TQ;
+	t->nbt = 1 + prseg + ps1 + ps2;
+	t->ps1 = ps1;
+	t->ps2 = ps2;
+	t->sjw = sjw;
+	t->valid = ps2 >= SIM_IPT_TQ && prseg + ps1 >= ps2 && ps2 > sjw;
+	cycles = 2 * brp * t->nbt;
+	t->ns = sim_div_u64((u64)cycles * SIM_NS_PER_SEC + chip->osc_hz / 2,
+			    chip->osc_hz);
+}
+
+u32 sim_chip_bit_ns(const struct sim_chip *chip)
+{
+	struct sim_timing t;
+
+	sim_chip_timing(chip, &t);
+	return t.ns;
+}
+
+bool sim_chip_timing_valid(const struct sim_chip *chip)
+{
+	struct sim_timing t;
+
+	sim_chip_timing(chip, &t);
+	return t.valid;
 }
 
 u32 sim_chip_bitrate(const struct sim_chip *chip)
 {
-	u32 ns = sim_chip_bit_ns(chip);
+	struct sim_timing t;
 
-	return ns ? (SIM_NS_PER_SEC + ns / 2) / ns : 0;
+	sim_chip_timing(chip, &t);
+	if (!t.valid || !t.ns)
+		return 0;
+	return (SIM_NS_PER_SEC + t.ns / 2) / t.ns;
 }
 
 /* ---- Transmit ----------------------------------------------------------------- */

@@ -140,11 +140,42 @@ u32 sim_frame_arbitration_key(const struct can_frame *cf)
 	return (cf->can_id & CAN_SFF_MASK) << 21 | rtr << 20;
 }
 
-bool sim_rates_match(u32 a_ns, u32 b_ns)
+/*
+ * Whether a node with timing t keeps in step with a node whose bit time
+ * is d ns off its own: the CAN oscillator-tolerance conditions (Bosch,
+ * "The Configuration of the CAN Bit Timing"), for a relative difference
+ * of 2 df between two nodes each within df of the nominal rate:
+ *	df <= SJW / (20 NBT)
+ *	(stuffing leaves at most 10 bits between two recessive-to-dominant
+ *	 edges; the phase error gathered meanwhile must fit in one
+ *	 resynchronisation of at most SJW quanta),
+ *	df <= min(PS1, PS2) / (2 (13 NBT - PS2))
+ *	(around an error flag up to 13 bits pass without a usable edge, and
+ *	 the sample point must stay within its phase segments).
+ * Cross-multiplied: no division, d and the bit time fit in 32 bits.
+ */
+static bool sim_node_tolerates(const struct sim_timing *t, u32 d)
 {
-	u64 diff = a_ns > b_ns ? a_ns - b_ns : b_ns - a_ns;
+	u32 ps_min = t->ps1 < t->ps2 ? t->ps1 : t->ps2;
 
-	if (!a_ns || !b_ns)
+	if (!t->nbt)
+		return true;	/* the ideal node */
+	return (u64)d * (13U * t->nbt - t->ps2) <= (u64)ps_min * t->ns &&
+	       (u64)d * 10U * t->nbt <= (u64)t->sjw * t->ns;
+}
+
+/*
+ * Two nodes understand each other when both timings obey the data
+ * sheets' rules and each tolerates the difference of their bit times.
+ */
+bool sim_timings_match(const struct sim_timing *a, const struct sim_timing *b)
+{
+	u32 d;
+
+	if (!a->valid || !b->valid || !a->ns || !b->ns)
 		return false;
-	return diff * 100 <= (u64)b_ns * SIM_RATE_TOLERANCE_PCT;
+	d = a->ns > b->ns ? a->ns - b->ns : b->ns - a->ns;
+	if (!a->nbt && !b->nbt)
+		return !d;
+	return sim_node_tolerates(a, d) && sim_node_tolerates(b, d);
 }

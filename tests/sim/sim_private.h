@@ -13,8 +13,6 @@
 /* bus-off recovery: 128 occurrences of 11 consecutive recessive bits */
 #define SIM_RECOVERY_SEQUENCES	128
 #define SIM_RECOVERY_BITS	11
-/* two bit rates within this many parts per hundred understand each other */
-#define SIM_RATE_TOLERANCE_PCT	1
 /* error counter limits, CAN 2.0B fault confinement */
 #define SIM_WARNING_LIMIT	96
 #define SIM_PASSIVE_LIMIT	128
@@ -55,10 +53,11 @@ struct sim_frame_info {
 };
 void sim_frame_measure(const struct can_frame *cf, struct sim_frame_info *info);
 u32 sim_frame_arbitration_key(const struct can_frame *cf);
-bool sim_rates_match(u32 a_ns, u32 b_ns);
+bool sim_timings_match(const struct sim_timing *a, const struct sim_timing *b);
 
 /* chip side, called by the bus (sim_chip.c) */
 u32 sim_chip_bit_ns(const struct sim_chip *chip);
+void sim_chip_timing(const struct sim_chip *chip, struct sim_timing *t);
 bool sim_chip_listening(const struct sim_chip *chip);
 bool sim_chip_error_active(const struct sim_chip *chip);
 int sim_chip_tx_candidate(const struct sim_chip *chip);

@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "mcp2510_core.h"
+#include "mcp2510_sim.h"
 #include "core_bittiming_vectors.h"
 
 static struct can_bittiming timing(u32 prop, u32 ps1, u32 ps2, u32 sjw,
@@ -276,6 +277,153 @@ static void test_calc_refuses_nonsense(void **state)
 	assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), -EDOM);
 }
 
+/* ---- The timings on the chip model ------------------------------------- */
+
+static void model_write(struct sim_chip *chip, u8 addr, u8 val)
+{
+	u8 tx[3] = { MCP2510_INSTR_WRITE, addr, val };
+
+	sim_chip_spi(chip, tx, NULL, sizeof(tx));
+}
+
+static u8 model_read(struct sim_chip *chip, u8 addr)
+{
+	u8 tx[3] = { MCP2510_INSTR_READ, addr, 0 }, rx[3];
+
+	sim_chip_spi(chip, tx, rx, sizeof(tx));
+	return rx[2];
+}
+
+/* a chip on a bus, CNF1..CNF3 as given, taking any frame into RXB0, normal mode */
+static void model_node(struct sim_bus *bus, struct sim_chip *chip, u32 osc_hz,
+		       const u8 cnf[3])
+{
+	assert_int_equal(sim_chip_init(chip, SIM_MCP2515, osc_hz), 0);
+	assert_int_equal(sim_bus_attach(bus, chip), 0);
+	sim_bus_advance(bus, sim_chip_startup_ns(chip));
+	model_write(chip, MCP2510_REG_CNF1, cnf[0]);
+	model_write(chip, MCP2510_REG_CNF2, cnf[1]);
+	model_write(chip, MCP2510_REG_CNF3, cnf[2]);
+	model_write(chip, MCP2510_REG_RXBCTRL(0),
+		    FIELD_PREP(MCP2510_RXBCTRL_RXM_MASK, MCP2510_RXM_ANY));
+	model_write(chip, MCP2510_REG_CANCTRL,
+		    FIELD_PREP(MCP2510_CANCTRL_REQOP_MASK, MCP2510_MODE_NORMAL));
+	sim_bus_advance(bus, 1000000);
+	assert_int_equal(sim_chip_opmode(chip), MCP2510_MODE_NORMAL);
+}
+
+/* from sends a standard frame with no data: does to take it? */
+static bool model_exchange(struct sim_bus *bus, struct sim_chip *from,
+			   struct sim_chip *to)
+{
+	u8 rts = MCP2510_INSTR_RTS | MCP2510_RTS_TXB(0);
+	bool got;
+
+	model_write(from, MCP2510_REG_TXBSIDH(0), 0x24);
+	model_write(from, MCP2510_REG_TXBSIDH(0) + 1, 0);	/* SIDL */
+	model_write(from, MCP2510_REG_TXBDLC(0), 0);
+	sim_chip_spi(from, &rts, NULL, 1);
+	sim_bus_advance(bus, 10000000);
+	got = model_read(to, MCP2510_REG_CANINTF) & MCP2510_INT_RX0;
+	model_write(to, MCP2510_REG_CANINTF, 0);
+	model_write(from, MCP2510_REG_CANINTF, 0);
+	return got && !(model_read(from, MCP2510_REG_TXBCTRL(0)) &
+			MCP2510_TXBCTRL_TXREQ);
+}
+
+/*
+ * What the two drivers program obeys the data sheets' bit timing rules
+ * (DS21291 5.8, DS21801 5.3, AN739), which the chip model enforces: this
+ * driver's calculator and encoder, mainline mcp251x's registers as
+ * can-calc-bit-timing gives them (the vectors' CNF1..CNF3), and mainline
+ * under Linux 6.12, whose calculator picks SJW = max(1, min(PS1, PS2 / 2))
+ * instead of 1.
+ */
+static void test_timings_valid_on_the_model(void **state)
+{
+	unsigned int i, n = 0;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(bt_vectors); i++) {
+		const struct bt_vector *v = &bt_vectors[i];
+		struct can_bittiming bt = { .bitrate = v->bitrate };
+		struct sim_chip chip;
+		u8 ours[3], theirs[3] = { v->cnf1, v->cnf2, v->cnf3 };
+		u32 sjw612 = v->phase_seg2 / 2 < v->phase_seg1 ?
+			     v->phase_seg2 / 2 : v->phase_seg1;
+
+		if (!v->possible)
+			continue;
+		assert_int_equal(mcp2510_bittiming_calc(v->osc_hz / 2, &bt), 0);
+		assert_int_equal(mcp2510_bittiming_encode(&bt, 0, ours), 0);
+		sim_chip_init(&chip, SIM_MCP2515, v->osc_hz);
+		model_write(&chip, MCP2510_REG_CNF1, ours[0]);
+		model_write(&chip, MCP2510_REG_CNF2, ours[1]);
+		model_write(&chip, MCP2510_REG_CNF3, ours[2]);
+		vector_assert(v, sim_chip_timing_valid(&chip));
+		/* the model rounds, the calculator truncates */
+		vector_assert(v, sim_chip_bitrate(&chip) - bt.bitrate <= 1);
+
+		model_write(&chip, MCP2510_REG_CNF1, theirs[0]);
+		model_write(&chip, MCP2510_REG_CNF2, theirs[1]);
+		model_write(&chip, MCP2510_REG_CNF3, theirs[2]);
+		vector_assert(v, sim_chip_timing_valid(&chip));
+		model_write(&chip, MCP2510_REG_CNF1,
+			    FIELD_PREP(MCP2510_CNF1_SJW_MASK, (sjw612 ? sjw612 : 1) - 1) |
+			    FIELD_PREP(MCP2510_CNF1_BRP_MASK, v->brp - 1));
+		vector_assert(v, sim_chip_timing_valid(&chip));
+		n++;
+	}
+	assert_true(n >= 50);
+}
+
+/*
+ * The usual rates from a 16 MHz oscillator: a node with this driver's
+ * timing and one with mainline's (under 6.1 and 6.12) understand each
+ * other both ways on the model's bus.
+ */
+static void test_usual_rates_communicate(void **state)
+{
+	static const u32 rates[] = { 125000, 250000, 500000, 1000000 };
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(rates); i++) {
+		const struct bt_vector *v = NULL;
+		struct can_bittiming bt = { .bitrate = rates[i] };
+		struct sim_bus bus;
+		struct sim_chip a, b, c;
+		u8 ours[3], theirs[3], theirs612[3];
+		unsigned int k;
+		u32 sjw612;
+
+		for (k = 0; k < ARRAY_SIZE(bt_vectors); k++)
+			if (bt_vectors[k].osc_hz == 16000000 &&
+			    bt_vectors[k].bitrate == rates[i])
+				v = &bt_vectors[k];
+		assert_non_null(v);
+		assert_int_equal(mcp2510_bittiming_calc(8000000, &bt), 0);
+		assert_int_equal(mcp2510_bittiming_encode(&bt, 0, ours), 0);
+		theirs[0] = v->cnf1;
+		theirs[1] = v->cnf2;
+		theirs[2] = v->cnf3;
+		memcpy(theirs612, theirs, sizeof(theirs));
+		sjw612 = v->phase_seg2 / 2 < v->phase_seg1 ? v->phase_seg2 / 2 :
+							      v->phase_seg1;
+		theirs612[0] = FIELD_PREP(MCP2510_CNF1_SJW_MASK, (sjw612 ? sjw612 : 1) - 1) |
+			       FIELD_PREP(MCP2510_CNF1_BRP_MASK, v->brp - 1);
+
+		sim_bus_init(&bus);
+		model_node(&bus, &a, 16000000, ours);
+		model_node(&bus, &b, 16000000, theirs);
+		model_node(&bus, &c, 16000000, theirs612);
+		if (!model_exchange(&bus, &a, &b) || !model_exchange(&bus, &b, &a) ||
+		    !model_exchange(&bus, &c, &a) || !model_exchange(&bus, &a, &c))
+			fail_msg("%u bit/s: no exchange", rates[i]);
+		assert_int_equal(sim_chip_rec(&a) + sim_chip_rec(&b) + sim_chip_rec(&c), 0);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -288,6 +436,8 @@ int main(void)
 		cmocka_unit_test(test_calc_sample_point_and_sjw_requests),
 		cmocka_unit_test(test_calc_early_sample_point),
 		cmocka_unit_test(test_calc_refuses_nonsense),
+		cmocka_unit_test(test_timings_valid_on_the_model),
+		cmocka_unit_test(test_usual_rates_communicate),
 	};
 
 	return cmocka_run_group_tests_name("core_bittiming", tests, NULL, NULL);

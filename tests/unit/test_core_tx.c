@@ -236,6 +236,44 @@ static void test_three_frames_keep_their_order(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * Requests made within one bit of a start of frame contend together
+ * (tests/sim/README.md): three frames submitted back to back over a timed
+ * SPI bus, all within the first bit of the first one's start of frame,
+ * still leave in queue order, since each new frame's buffer and TXP rank
+ * below the pending ones.
+ */
+static void test_frames_within_a_bit_keep_their_order(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2515);
+	struct ch_node *tx = &rig->node[0], *rx = &rig->node[1];
+	static const canid_t ids[] = { 0x700, 0x300, 0x100 };
+	const struct sim_spi_timing fast = { .enabled = true };
+	const u32 bit_ns = 1000000000U / 20000;
+	u64 first;
+	unsigned int i;
+
+	(void)state;
+	assert_int_equal(ch_start(tx, 20000, 0), 0);
+	assert_int_equal(ch_start(rx, 20000, 0), 0);
+	rig->spi.timing = fast;
+	first = sim_bus_now(&rig->bus);
+	for (i = 0; i < 3; i++) {
+		struct can_frame cf = ch_frame(ids[i], 0, i);
+
+		assert_true(mcp2510_tx_submit(&tx->core, &cf) >= 0);
+	}
+	/* every request came while the first start of frame was on the bus */
+	assert_true(sim_bus_now(&rig->bus) > first);
+	assert_true(sim_bus_now(&rig->bus) - first < bit_ns);
+	assert_false(sim_bus_idle(&rig->bus));
+	ch_run_idle(rig, 100 * MS);
+	assert_int_equal(rx->ev.rx_count, 3);
+	for (i = 0; i < 3; i++)
+		assert_int_equal(rx->ev.rx[i].can_id, ids[i]);
+	ch_rig_free(rig);
+}
+
 static void test_stream_mcp2510(void **state)
 {
 	struct stream s = { .total = 10000, .phantom_every = 97 };
@@ -453,6 +491,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_three_frames_keep_their_order),
+		cmocka_unit_test(test_frames_within_a_bit_keep_their_order),
 		cmocka_unit_test(test_idle_submit_and_completion_cost),
 		cmocka_unit_test(test_stream_mcp2510),
 		cmocka_unit_test(test_stream_mcp2515),

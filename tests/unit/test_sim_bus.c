@@ -213,7 +213,7 @@ static void test_arbitration_three_chips(void **state)
 	simh_send(&r->chip[1], 0, &cf);
 	cf = simh_frame(0x200, 0, NULL);
 	simh_send(&r->chip[2], 0, &cf);
-	sim_bus_advance(&r->bus, 0);		/* the first arbitration */
+	sim_bus_advance(&r->bus, BIT_NS_125K);	/* start of frame, arbitration */
 	assert_false(sim_bus_idle(&r->bus));
 	assert_true(simh_read(&r->chip[0], MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_MLOA);
 	assert_true(simh_read(&r->chip[2], MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_MLOA);
@@ -226,6 +226,58 @@ static void test_arbitration_three_chips(void **state)
 	/* chip 0 heard both others: one in RXB0, one lost to RX0OVR (no BUKT) */
 	assert_int_equal(sim_chip_counters(&r->chip[0])->frames_rx, 1);
 	assert_int_equal(sim_chip_counters(&r->chip[0])->overflows, 1);
+}
+
+/*
+ * A request made while another node's start-of-frame bit is on the bus
+ * still joins the arbitration: the late node hard-synchronises on that
+ * edge and sends its identifier from the next bit on (CAN 2.0B part B,
+ * "Start of Frame" and "Hard Synchronization").  Half a bit after
+ * chip 1 asked, chip 0 asks with a lower id and wins, and the frame
+ * still starts at chip 1's start of frame.  The same holds for requests
+ * pending when the bus goes idle; a request one full bit after the start
+ * of frame is too late.
+ */
+static void test_arbitration_window(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf;
+	u64 t0;
+
+	t0 = sim_bus_now(&r->bus);
+	cf = simh_frame(0x200, 0, NULL);
+	simh_send(&r->chip[1], 0, &cf);
+	sim_bus_advance(&r->bus, BIT_NS_125K / 2);
+	cf = simh_frame(0x100, 0, NULL);
+	simh_send(&r->chip[0], 0, &cf);
+	/* chip 2 asks while 0x100 is on the bus: it contends after it */
+	sim_bus_advance(&r->bus, 20 * BIT_NS_125K);
+	cf = simh_frame(0x300, 0, NULL);
+	simh_send(&r->chip[2], 0, &cf);
+	/* 0x100 ends; half a bit into the next start of frame chip 0 asks again */
+	while (r->log.count < 1)
+		sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));
+	sim_bus_advance(&r->bus, BIT_NS_125K / 2);
+	cf = simh_frame(0x080, 0, NULL);
+	simh_send(&r->chip[0], 1, &cf);
+	simh_run_idle(&r->bus, 10 * MS);
+
+	expect_order(r, 0, (const canid_t[]){ 0x100, 0x080, 0x200, 0x300 }, 4);
+	assert_int_equal(simh_log_get(&r->log, 0)->start_ns, t0);
+	assert_int_equal(simh_log_get(&r->log, 0)->end_ns,
+			 t0 + (u64)simh_log_get(&r->log, 0)->bits * BIT_NS_125K);
+	assert_int_equal(sim_chip_counters(&r->chip[1])->arbitration_lost, 2);
+
+	/* one full bit after the start of frame the arbitration is over */
+	t0 = sim_bus_now(&r->bus);
+	cf = simh_frame(0x200, 0, NULL);
+	simh_send(&r->chip[1], 0, &cf);
+	sim_bus_advance(&r->bus, BIT_NS_125K);
+	cf = simh_frame(0x100, 0, NULL);
+	simh_send(&r->chip[0], 0, &cf);
+	simh_run_idle(&r->bus, 10 * MS);
+	expect_order(r, 4, (const canid_t[]){ 0x200, 0x100 }, 2);
+	assert_int_equal(simh_log_get(&r->log, 4)->start_ns, t0);
 }
 
 /* CAN 2.0B: data before remote, standard before extended with the same base id */
@@ -279,7 +331,7 @@ static void test_tx_priority(void **state)
 	simh_send(&r->chip[0], 0, &cf);
 	cf = simh_frame(0x001, 0, NULL);
 	assert_int_equal(sim_phantom_send(&r->bus, &cf, 0), 0);
-	sim_bus_advance(&r->bus, 0);		/* the phantom wins */
+	sim_bus_advance(&r->bus, BIT_NS_125K);	/* the phantom wins */
 	assert_true(simh_read(&r->chip[0], MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_MLOA);
 	cf = simh_frame(0x500, 0, NULL);
 	simh_load_tx(&r->chip[0], 2, &cf);
@@ -339,7 +391,8 @@ static void test_abort_all(void **state)
 		simh_load_tx(chip, n, &cf);
 	}
 	simh_rts(chip, MCP2510_RTS_ALL);
-	sim_bus_advance(&r->bus, 0);		/* TXB2 goes on the (ACK-less) bus */
+	/* TXB2 goes on the (ACK-less) bus: start of frame, arbitration */
+	sim_bus_advance(&r->bus, BIT_NS_125K);
 	assert_false(sim_bus_idle(&r->bus));
 	simh_bit_modify(chip, MCP2510_REG_CANCTRL, MCP2510_CANCTRL_ABAT, 0xff);
 	for (n = 0; n < 2; n++)
@@ -365,7 +418,7 @@ static void test_abort_all(void **state)
 
 	/* clearing TXREQ of the buffer on the bus: the frame completes */
 	simh_send(chip, 1, &cf);
-	sim_bus_advance(&r->bus, 0);
+	sim_bus_advance(&r->bus, BIT_NS_125K);
 	simh_bit_modify(chip, MCP2510_REG_TXBCTRL(1), MCP2510_TXBCTRL_TXREQ, 0);
 	simh_run_idle(&r->bus, 10 * MS);
 	assert_true(simh_read(chip, MCP2510_REG_CANINTF) & MCP2510_INT_TX1);
@@ -571,8 +624,9 @@ static void test_listen_only(void **state)
 	assert_int_equal(simh_set_mode(b, MCP2510_MODE_LISTEN_ONLY), 0);
 	simh_send(b, 0, &cf);			/* never sent */
 	simh_send(a, 0, &cf);
-	sim_bus_advance(&r->bus, 0);
-	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));
+	sim_bus_advance(&r->bus, 0);				/* start of frame */
+	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));	/* arbitration */
+	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));	/* end */
 	assert_int_equal(r->log.count, 1);
 	assert_false(simh_log_get(&r->log, 0)->acked);
 	assert_int_equal(simh_read(a, MCP2510_REG_TEC), 8);
@@ -581,9 +635,11 @@ static void test_listen_only(void **state)
 	assert_int_equal(simh_read(b, MCP2510_REG_REC), 0);
 	assert_true(simh_read(b, MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_TXREQ);
 	/*
-	 * The retry started as the error frame ended, still unheard (TEC 16);
-	 * with b back in normal mode the next one is acknowledged (TEC 15).
+	 * The retry started as the error frame ended and, past its
+	 * arbitration, is still unheard (TEC 16); with b back in normal mode
+	 * the next one is acknowledged (TEC 15).
 	 */
+	sim_bus_advance(&r->bus, BIT_NS_125K);
 	assert_int_equal(simh_set_mode(b, MCP2510_MODE_NORMAL), 0);
 	simh_bit_modify(b, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
 	simh_run_idle(&r->bus, 10 * MS);
@@ -641,6 +697,7 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_exchange_all_frame_kinds, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_arbitration_three_chips, setup_three, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_arbitration_frame_types, setup_three, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_arbitration_window, setup_three, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_tx_priority, setup_one, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_one_shot, setup_one_2515, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_abort_all, setup_one, simh_teardown),

@@ -254,14 +254,15 @@ static void test_bit_rate_mismatch(void **state)
 	simh_bit_modify(&a, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
 	simh_set_mode(&a, MCP2510_MODE_NORMAL);
 	simh_send(&b, 0, &cf);
-	sim_bus_advance(&bus, 0);
-	sim_bus_advance_to(&bus, sim_bus_next_event(&bus));
+	sim_bus_advance(&bus, 0);				/* start of frame */
+	sim_bus_advance_to(&bus, sim_bus_next_event(&bus));	/* arbitration */
+	sim_bus_advance_to(&bus, sim_bus_next_event(&bus));	/* error frame ends */
 	assert_int_equal(simh_log_get(&log, 32)->bitrate, 250000);
 	assert_int_equal(simh_read(&b, MCP2510_REG_TEC), 8);
 	assert_int_equal(simh_read(&a, MCP2510_REG_REC), 1);
 }
 
-/* Bit rates within 1 % understand each other; beyond, they do not. */
+/* AN739's timing (8 quanta, SJW 1) keeps in step within 1.25 %; beyond, it does not. */
 static void test_bit_rate_tolerance(void **state)
 {
 	struct rig *r = *state;
@@ -280,6 +281,110 @@ static void test_bit_rate_tolerance(void **state)
 	simh_send(&r->a, 0, &cf);
 	assert_int_equal(next_frame(r)->cause, SIM_ERR_BITRATE);
 	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 8);
+}
+
+/*
+ * CNF1-3 that break the data sheets' rules (DS21291 5.8 / DS21801 5.3
+ * "Programming Time Segments", AN739 "Rules for setting the bit time")
+ * do not communicate, even at the right bit rate: every frame the broken
+ * node sends is flagged by the good one, and the broken node, error
+ * active, flags every frame it hears.  Each set of values below makes
+ * 8 quanta of 1 us, 125 kbit/s like node A.
+ */
+static void test_invalid_bit_timing(void **state)
+{
+	static const struct {
+		u8 cnf[3];
+		bool valid;
+	} cases[] = {
+		{ { 0x07, 0x92, 0x00 }, false },	/* PS2 1 TQ: below the IPT */
+		{ { 0x87, 0x90, 0x02 }, false },	/* SJW 3 TQ, PS2 3 TQ: not PS2 > SJW */
+		{ { 0x07, 0x80, 0x04 }, false },	/* PRSEG 1 + PS1 1 < PS2 5 */
+		{ { 0x47, 0x0a, 0x00 }, false },	/* BTLMODE 0: PS2 = PS1 = 2 TQ = SJW */
+		{ { 0x07, 0x10, 0x00 }, true },		/* BTLMODE 0: PS2 = PS1 = 3 TQ */
+		{ { 0x07, 0x90, 0x02 }, true },		/* AN739 example 2 */
+	};
+	struct can_frame cf = simh_frame(0x123, 1, (const u8[]){ 7 });
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(cases); i++) {
+		struct rig *r = test_calloc(1, sizeof(*r));
+		const struct sim_bus_record *rec;
+
+		sim_bus_init(&r->bus);
+		simh_log_attach(&r->bus, &r->log);
+		simh_node_setup_125k(&r->bus, &r->a, SIM_MCP2510);
+		accept_all(&r->a);
+		simh_node_setup(&r->bus, &r->b, SIM_MCP2515, cases[i].cnf[0],
+				cases[i].cnf[1], cases[i].cnf[2]);
+		accept_all(&r->b);
+		simh_set_mode(&r->a, MCP2510_MODE_NORMAL);
+		simh_set_mode(&r->b, MCP2510_MODE_NORMAL);
+		assert_int_equal(sim_chip_bitrate(&r->b), cases[i].valid ? 125000 : 0);
+
+		simh_send(&r->b, 0, &cf);
+		rec = next_frame(r);
+		assert_int_equal(rec->kind, cases[i].valid ? SIM_REC_FRAME : SIM_REC_ERROR);
+		assert_int_equal(rec->cause, cases[i].valid ? SIM_ERR_NONE : SIM_ERR_BITRATE);
+		assert_int_equal(rec->bitrate, 125000);
+		simh_set_mode(&r->b, MCP2510_MODE_CONFIG);
+		simh_bit_modify(&r->b, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
+		simh_set_mode(&r->b, MCP2510_MODE_NORMAL);
+
+		simh_send(&r->a, 0, &cf);
+		rec = next_frame(r);
+		assert_int_equal(rec->kind, cases[i].valid ? SIM_REC_FRAME : SIM_REC_ERROR);
+		assert_int_equal(simh_read(&r->b, MCP2510_REG_REC), cases[i].valid ? 0 : 1);
+		assert_int_equal(sim_chip_counters(&r->b)->frames_rx, cases[i].valid ? 1 : 0);
+		test_free(r);
+	}
+}
+
+/*
+ * How far apart two bit rates may be is what the nodes' timing allows,
+ * the CAN oscillator-tolerance conditions for each node:
+ *	df <= min(PS1, PS2) / (2 (13 NBT - PS2))	and	df <= SJW / (20 NBT)
+ * where two nodes each within df of the nominal rate differ by up to 2 df.
+ * A node of 25 quanta with SJW 1 allows 0.4 %, one of 16 quanta with
+ * SJW 4 and PS2 5 about 2.5 %: not the same fixed 1 % for both.
+ */
+static void test_bit_rate_tolerance_from_timing(void **state)
+{
+	struct rig *r = test_calloc(1, sizeof(*r));
+	struct can_frame cf = simh_frame(0x55, 0, NULL);
+
+	(void)state;
+	sim_bus_init(&r->bus);
+	simh_log_attach(&r->bus, &r->log);
+	/* 80 kbit/s: BRP 4, PRSEG 8, PS1 8, PS2 8, SJW 1 */
+	simh_node_setup(&r->bus, &r->a, SIM_MCP2510, 0x03, 0xbf, 0x07);
+	accept_all(&r->a);
+	simh_set_mode(&r->a, MCP2510_MODE_NORMAL);
+	assert_int_equal(sim_chip_bitrate(&r->a), 80000);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 80240), 0);	/* 0.3 % */
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 80640), 0);	/* 0.8 % */
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_BITRATE);
+	sim_phantom_detach(&r->bus);
+	simh_run_idle(&r->bus, 10 * MS);
+
+	/* 125 kbit/s: BRP 4, PRSEG 4, PS1 6, PS2 5, SJW 4 */
+	simh_set_mode(&r->a, MCP2510_MODE_CONFIG);
+	simh_write(&r->a, MCP2510_REG_CNF1, 0xc3);
+	simh_write(&r->a, MCP2510_REG_CNF2, 0xab);
+	simh_write(&r->a, MCP2510_REG_CNF3, 0x04);
+	simh_set_mode(&r->a, MCP2510_MODE_NORMAL);
+	assert_int_equal(sim_chip_bitrate(&r->a), 125000);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 127500), 0);	/* 2 % */
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 122500), 0);
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 129000), 0);	/* 3.2 % */
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_BITRATE);
+	assert_int_equal(sim_chip_counters(&r->a)->rx_errors, 2);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 1);
+	test_free(r);
 }
 
 /*
@@ -341,7 +446,8 @@ static void test_missing_ack(void **state)
 	simh_read_rx(&r->b, 0, &got, true);
 	assert_true(simh_frame_equal(&cf, &got));
 
-	/* the retry on the bus was judged before the fault went away */
+	/* the retry, past its arbitration, was judged before the fault went away */
+	sim_bus_advance(&r->bus, BIT_NS_125K);
 	sim_bus_faults(&r->bus)->no_ack = false;
 	assert_int_equal(next_frame(r)->cause, SIM_ERR_ACK);
 	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
@@ -361,7 +467,8 @@ static void test_sender_reset_mid_frame(void **state)
 	const struct sim_bus_record *rec;
 
 	simh_send(&r->a, 0, &cf);
-	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));
+	sim_bus_advance(&r->bus, 0);				/* start of frame */
+	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));	/* arbitration */
 	assert_true(r->bus.busy);
 	sim_chip_reset_pin(&r->a);
 	rec = next_frame(r);
@@ -381,6 +488,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_bus_off_recovery_on_busy_bus, setup_one, simh_teardown),
 		cmocka_unit_test(test_bit_rate_mismatch),
 		cmocka_unit_test_setup_teardown(test_bit_rate_tolerance, setup_one, simh_teardown),
+		cmocka_unit_test(test_invalid_bit_timing),
+		cmocka_unit_test(test_bit_rate_tolerance_from_timing),
 		cmocka_unit_test_setup_teardown(test_receive_error_counter, setup_one, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_missing_ack, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_sender_reset_mid_frame, setup_two, simh_teardown),
