@@ -279,10 +279,11 @@ static bool sim_chip_tx_pending(const struct sim_chip *chip)
  * transmissions are complete" (the model holds the MCP2510 to it too).
  * Pending is a frame on the bus or any buffer with TXREQ set, in the
  * modes that transmit (normal, loopback); listen-only, sleep and
- * configuration mode send nothing, so nothing there can hold a request.  A bus-off chip's buffers wait for
- * the recovery: faults.mode_change_in_bus_off says whether they hold the
- * request meanwhile (the data sheets do not say).  ABAT or clearing TXREQ
- * is how the MCU ends the wait.
+ * configuration mode send nothing, so nothing there can hold a request.
+ * A bus-off chip's buffers wait for the recovery:
+ * faults.mode_change_in_bus_off says whether they hold the request
+ * meanwhile (the data sheets do not say).  ABAT or clearing TXREQ is how
+ * the MCU ends the wait.
  */
 static bool sim_chip_mode_held(const struct sim_chip *chip)
 {
