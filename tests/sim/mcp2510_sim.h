@@ -137,6 +137,39 @@ struct sim_chip_faults {
 	 * attempt counts in sim_counters.tx_pending_writes.
 	 */
 	bool txp_writable_while_pending;
+	/*
+	 * More readings the data sheets leave open; false (the default) is
+	 * the one that helps a driver least.
+	 *
+	 * mode_change_in_bus_off: a mode request waits while any TXREQ is
+	 * set (DS21801 10.0).  A bus-off chip cannot send its pending
+	 * buffers until it has recovered: false, the request still waits
+	 * for them (sent after the recovery, or aborted); true, a bus-off
+	 * chip changes mode at once and the buffers stay pending.
+	 */
+	bool mode_change_in_bus_off;
+	/*
+	 * abtf_on_one_shot: whether a failed or lost one-shot attempt sets
+	 * ABTF (DS21801 3.4 only says the attempt is not repeated).  false:
+	 * TXREQ clears with TXERR or MLOA alone; true: ABTF as well.
+	 */
+	bool abtf_on_one_shot;
+	/*
+	 * errif_on_decrease: whether ERRIF fires when an EFLG state bit
+	 * clears (warning gone, error-passive to error-active, recovery from
+	 * bus-off).  false: only a bit being set raises it, so a driver
+	 * that reads EFLG only on ERRIF never sees the way back; true: any
+	 * change of the state bits raises it.
+	 */
+	bool errif_on_decrease;
+	/*
+	 * errif_clearable_with_overflow: DS21801 7.7 lets the MCU clear a
+	 * flag the chip set only once its condition is removed.  An
+	 * overflow's condition is RXnOVR, which the MCU must clear
+	 * (7.6.1).  false: ERRIF cannot be cleared while an RXnOVR bit is
+	 * set; true: it can, in any order.
+	 */
+	bool errif_clearable_with_overflow;
 };
 
 /*
@@ -154,6 +187,7 @@ struct sim_tx_state {
 	bool active;		/* a frame of this chip is on the bus or in the loop */
 	bool loopback;		/* ... inside the chip (loopback mode) */
 	bool abort;		/* aborted while in flight: do not retry */
+	bool abort_abat;	/* ... and by ABAT, which sets ABTF */
 	u8 buf;			/* which TX buffer */
 	u64 end_at;		/* loopback: when the frame is complete */
 };

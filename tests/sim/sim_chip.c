@@ -215,7 +215,12 @@ bool sim_chip_error_active(const struct sim_chip *chip)
 	return chip->tec < SIM_PASSIVE_LIMIT && chip->rec < SIM_PASSIVE_LIMIT;
 }
 
-/* EFLG follows the counters; ERRIF rises when an EFLG bit becomes set. */
+/*
+ * EFLG follows the counters; ERRIF rises when an EFLG bit becomes set,
+ * and with faults.errif_on_decrease also when a state bit clears (the
+ * data sheets leave that open: DS21801 7.6 lists the conditions as
+ * limits reached, not left).
+ */
 static void sim_chip_update_eflg(struct sim_chip *chip)
 {
 	u8 *eflg = sim_reg(chip, MCP2510_REG_EFLG);
@@ -234,7 +239,8 @@ static void sim_chip_update_eflg(struct sim_chip *chip)
 	if (chip->bus_off)
 		state |= MCP2510_EFLG_TXBO;
 	*eflg = (old & SIM_EFLG_OVR) | state;
-	if (*eflg & ~old)
+	if ((*eflg & ~old) ||
+	    (chip->faults.errif_on_decrease && (old & ~*eflg & SIM_EFLG_STATE)))
 		*sim_reg(chip, MCP2510_REG_CANINTF) |= MCP2510_INT_ERR;
 }
 
@@ -258,13 +264,58 @@ static void sim_chip_enter_mode(struct sim_chip *chip, unsigned int mode)
 		sim_chip_clear_counters(chip);
 }
 
+static bool sim_chip_tx_pending(const struct sim_chip *chip)
+{
+	unsigned int n;
+
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (chip->regs[MCP2510_REG_TXBCTRL(n)] & MCP2510_TXBCTRL_TXREQ)
+			return true;
+	return false;
+}
+
 /*
- * REQOP changed.  The mode follows after faults.mode_delay_ns, and never
- * while this chip's own frame is on the bus (DS21801 10.0: "the mode will
- * not change until all pending message transmissions are complete"; the
- * model waits for the frame in flight, not for queued requests).  From
- * sleep the oscillator must start again first.  REQOP 5..7 is no mode
- * (AN739: 111 is only valid after power-up): nothing happens.
+ * DS21801 10.0: "the mode will not change until all pending message
+ * transmissions are complete" (the model holds the MCP2510 to it too).
+ * Pending is a frame on the bus or any buffer with TXREQ set, in the
+ * modes that transmit (normal, loopback); listen-only, sleep and
+ * configuration mode send nothing, so nothing there can hold a request.
+ * A bus-off chip's buffers wait for the recovery:
+ * faults.mode_change_in_bus_off says whether they hold the request
+ * meanwhile (the data sheets do not say).  ABAT or clearing TXREQ is how
+ * the MCU ends the wait.
+ */
+static bool sim_chip_mode_held(const struct sim_chip *chip)
+{
+	if (chip->tx.active)
+		return true;
+	if (chip->opmode != MCP2510_MODE_NORMAL &&
+	    chip->opmode != MCP2510_MODE_LOOPBACK)
+		return false;
+	if (chip->bus_off && chip->faults.mode_change_in_bus_off)
+		return false;
+	return sim_chip_tx_pending(chip);
+}
+
+/* A requested mode whose time has come and that nothing holds: now. */
+static void sim_chip_mode_try(struct sim_chip *chip)
+{
+	unsigned int req = FIELD_GET(MCP2510_CANCTRL_REQOP_MASK,
+				     chip->regs[MCP2510_REG_CANCTRL]);
+
+	if (!chip->mode_pending || sim_now(chip) < chip->mode_at ||
+	    sim_chip_mode_held(chip))
+		return;
+	chip->mode_pending = false;
+	if (req <= MCP2510_MODE_CONFIG)
+		sim_chip_enter_mode(chip, req);
+}
+
+/*
+ * REQOP changed.  The mode follows after faults.mode_delay_ns, once no
+ * transmission is pending (sim_chip_mode_held()).  From sleep the
+ * oscillator must start again first.  REQOP 5..7 is no mode (AN739: 111
+ * is only valid after power-up): nothing happens.
  */
 static void sim_chip_mode_request(struct sim_chip *chip)
 {
@@ -277,12 +328,9 @@ static void sim_chip_mode_request(struct sim_chip *chip)
 		return;
 	if (chip->opmode == MCP2510_MODE_SLEEP)
 		delay += sim_chip_startup_ns(chip);
-	if (!delay && !chip->tx.active) {
-		sim_chip_enter_mode(chip, req);
-		return;
-	}
 	chip->mode_pending = true;
 	chip->mode_at = sim_now(chip) + delay;
+	sim_chip_mode_try(chip);
 }
 
 /*
@@ -452,6 +500,7 @@ void sim_chip_tx_start(struct sim_chip *chip, unsigned int buf)
 	chip->tx.active = true;
 	chip->tx.loopback = false;
 	chip->tx.abort = false;
+	chip->tx.abort_abat = false;
 	chip->tx.buf = buf;
 }
 
@@ -461,12 +510,20 @@ static bool sim_chip_one_shot(const struct sim_chip *chip)
 	       (chip->regs[MCP2510_REG_CANCTRL] & MCP2515_CANCTRL_OSM);
 }
 
-static void sim_chip_abort_buffer(struct sim_chip *chip, unsigned int n)
+/*
+ * The buffer gives up its request.  DS21801 3.4: ABTF is set only for an
+ * abort requested with ABAT; clearing TXREQ aborts without it.  Whether
+ * a failed one-shot attempt sets it 3.4 does not say
+ * (faults.abtf_on_one_shot).
+ */
+static void sim_chip_abort_buffer(struct sim_chip *chip, unsigned int n,
+				  bool abtf)
 {
 	u8 *ctrl = sim_txbctrl(chip, n);
 
 	*ctrl &= ~MCP2510_TXBCTRL_TXREQ;
-	*ctrl |= MCP2510_TXBCTRL_ABTF;
+	if (abtf)
+		*ctrl |= MCP2510_TXBCTRL_ABTF;
 }
 
 /* Lost arbitration: MLOA, and with one-shot mode no second attempt. */
@@ -479,7 +536,7 @@ void sim_chip_tx_lost(struct sim_chip *chip)
 	*sim_txbctrl(chip, buf) |= MCP2510_TXBCTRL_MLOA;
 	chip->counters.arbitration_lost++;
 	if (sim_chip_one_shot(chip))
-		sim_chip_abort_buffer(chip, buf);
+		sim_chip_abort_buffer(chip, buf, chip->faults.abtf_on_one_shot);
 	sim_chip_update_pins(chip);
 }
 
@@ -525,9 +582,13 @@ void sim_chip_tx_end(struct sim_chip *chip, bool ok, bool count_error)
 		chip->counters.tx_errors++;
 		if (count_error)
 			sim_chip_tec_add(chip, 8);
-		if (chip->tx.abort || sim_chip_one_shot(chip) ||
-		    !(*ctrl & MCP2510_TXBCTRL_TXREQ))
-			sim_chip_abort_buffer(chip, buf);
+		if (chip->tx.abort_abat)
+			sim_chip_abort_buffer(chip, buf, true);
+		else if (sim_chip_one_shot(chip))
+			sim_chip_abort_buffer(chip, buf,
+					      chip->faults.abtf_on_one_shot);
+		else if (chip->tx.abort || !(*ctrl & MCP2510_TXBCTRL_TXREQ))
+			sim_chip_abort_buffer(chip, buf, false);
 	}
 	sim_chip_update_eflg(chip);
 	sim_chip_update_pins(chip);
@@ -552,10 +613,11 @@ static void sim_chip_abort_all(struct sim_chip *chip)
 	for (n = 0; n < MCP2510_TXB_COUNT; n++) {
 		if (chip->tx.active && chip->tx.buf == n) {
 			chip->tx.abort = true;
+			chip->tx.abort_abat = true;
 			continue;
 		}
 		if (*sim_txbctrl(chip, n) & MCP2510_TXBCTRL_TXREQ)
-			sim_chip_abort_buffer(chip, n);
+			sim_chip_abort_buffer(chip, n, true);
 	}
 }
 
@@ -808,7 +870,7 @@ u64 sim_chip_next_event(const struct sim_chip *chip)
 		return t;
 	if (now < chip->ready_at)
 		return chip->ready_at;
-	if (chip->mode_pending && !chip->tx.active)
+	if (chip->mode_pending && !sim_chip_mode_held(chip))
 		t = sim_min_u64(t, chip->mode_at);
 	if (chip->wake_pending)
 		t = sim_min_u64(t, chip->wake_at);
@@ -838,14 +900,7 @@ void sim_chip_run_events(struct sim_chip *chip)
 	}
 	if (chip->tx.active && chip->tx.loopback && now >= chip->tx.end_at)
 		sim_chip_loopback_end(chip);
-	if (chip->mode_pending && !chip->tx.active && now >= chip->mode_at) {
-		unsigned int req = FIELD_GET(MCP2510_CANCTRL_REQOP_MASK,
-					     chip->regs[MCP2510_REG_CANCTRL]);
-
-		chip->mode_pending = false;
-		if (req <= MCP2510_MODE_CONFIG)
-			sim_chip_enter_mode(chip, req);
-	}
+	sim_chip_mode_try(chip);
 	if (!chip->tx.active && chip->opmode == MCP2510_MODE_LOOPBACK) {
 		buf = sim_chip_pick_buffer(chip);
 		if (buf >= 0)
@@ -936,12 +991,34 @@ static void sim_write_txbctrl(struct sim_chip *chip, unsigned int n, u8 old)
 		*ctrl &= ~MCP2510_TXBCTRL_TXREQ;
 		sim_chip_request(chip, n);
 	} else if (was && !now) {
-		/* DS21801 register 3-1: clearing TXREQ requests an abort */
+		/*
+		 * DS21801 register 3-1: clearing TXREQ requests an abort; 3.4:
+		 * without ABTF.  A waiting buffer is done with; the frame on
+		 * the bus finishes and, failed, is not repeated.
+		 */
 		if (chip->tx.active && chip->tx.buf == n)
 			chip->tx.abort = true;
-		else
-			*ctrl |= MCP2510_TXBCTRL_ABTF;
 	}
+}
+
+/*
+ * DS21801 7.7: once the chip has set an interrupt flag the MCU cannot
+ * clear it until the interrupt condition is removed.  The one condition
+ * the data sheets name as the MCU's to remove is an overflow's RXnOVR
+ * (7.6.1: "This bit must be cleared by the MCU"), so ERRIF stays while
+ * an RXnOVR bit does (faults.errif_clearable_with_overflow: it does not).
+ * The EFLG state bits are not such a condition: they are read only and
+ * may last for ever (a lone error-passive node), and an ERRIF held by
+ * them could never be acknowledged.
+ */
+static void sim_errif_hold(struct sim_chip *chip, u8 old)
+{
+	u8 *intf = sim_reg(chip, MCP2510_REG_CANINTF);
+
+	if ((old & ~*intf & MCP2510_INT_ERR) &&
+	    (chip->regs[MCP2510_REG_EFLG] & SIM_EFLG_OVR) &&
+	    !chip->faults.errif_clearable_with_overflow)
+		*intf |= MCP2510_INT_ERR;
 }
 
 /*
@@ -985,6 +1062,7 @@ static void sim_reg_write(struct sim_chip *chip, unsigned int addr, u8 val,
 		if ((*reg & ~old) & MCP2510_CANCTRL_ABAT)
 			sim_chip_abort_all(chip);
 	} else if (addr == MCP2510_REG_CANINTF) {
+		sim_errif_hold(chip, old);
 		if ((*reg & ~old & MCP2510_INT_WAK) &&
 		    chip->opmode == MCP2510_MODE_SLEEP)
 			sim_chip_wake(chip);
@@ -996,6 +1074,8 @@ static void sim_reg_write(struct sim_chip *chip, unsigned int addr, u8 val,
 		   (addr & 0x0f) == MCP2510_BUF_CTRL) {
 		sim_write_txbctrl(chip, (addr - MCP2510_REG_TXB(0)) >> 4, old);
 	}
+	/* an abort may have ended what held a mode request */
+	sim_chip_mode_try(chip);
 }
 
 /* ---- SPI ------------------------------------------------------------------------ */

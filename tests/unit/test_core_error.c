@@ -139,6 +139,31 @@ static void test_bus_off_and_the_chips_own_recovery(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * ifdown while bus-off with a frame pending: DS21801 10.0 holds the sleep
+ * request while TXREQ is set, and by default a bus-off chip's buffer
+ * counts (sim_chip_faults.mode_change_in_bus_off).  The stop must abort
+ * first and not wait for a mode that cannot come.
+ */
+static void test_stop_in_bus_off(void **state)
+{
+	struct ch_rig *rig = bus_off_rig(1000, 0);
+	struct ch_node *node = &rig->node[0];
+	unsigned int n, pending = 0;
+
+	(void)state;
+	run_to_bus_off(rig);
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		pending += !!(sim_chip_peek(&node->sim, MCP2510_REG_TXBCTRL(n)) &
+			      MCP2510_TXBCTRL_TXREQ);
+	assert_int_equal(pending, 1);
+	assert_int_equal(mcp2510_stop(&node->core), 0);
+	assert_int_equal(sim_chip_opmode(&node->sim), MCP2510_MODE_SLEEP);
+	assert_int_equal(node->ev.tx_aborted_count, 1);
+	assert_int_equal(node->core.state, CAN_STATE_STOPPED);
+	ch_rig_free(rig);
+}
+
 static void test_restart_from_bus_off(void **state)
 {
 	struct ch_rig *rig = bus_off_rig(1000, 0);
@@ -424,12 +449,67 @@ static void test_disagreeing_reads_keep_the_state(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * A receiver pushed to error-passive by bus errors and brought back by
+ * good frames: REC falls to 119 (warning), then below 96 (active).
+ * Neither step sets an EFLG bit, so by default (the reading that helps a
+ * driver least) no ERRIF comes; the core must still report both.  With
+ * errif_on_decrease it gets the flags, and reports the same.
+ */
+static void run_receiver_recovery(bool errif_on_decrease)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x321, 2, 0);
+	unsigned int i;
+
+	sim_chip_faults(&node->sim)->errif_on_decrease = errif_on_decrease;
+	assert_int_equal(ch_start(node, BITRATE, 0), 0);
+	sim_phantom_attach(&rig->bus, 0);
+	sim_bus_faults(&rig->bus)->bus_errors = 130;
+	assert_int_equal(sim_phantom_send(&rig->bus, &cf, 0), 0);
+	ch_run_idle(rig, 100 * MS);
+	assert_int_equal(sim_chip_rec(&node->sim), 119);
+	assert_int_equal(node->ev.state_count, 3);
+	assert_int_equal(node->ev.state[0], CAN_STATE_ERROR_WARNING);
+	assert_int_equal(node->ev.state[1], CAN_STATE_ERROR_PASSIVE);
+	assert_int_equal(node->ev.state[2], CAN_STATE_ERROR_WARNING);
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_WARNING);
+
+	for (i = 0; i < 30; i++) {
+		cf = ch_frame(0x300 + i, 1, i);
+		assert_int_equal(sim_phantom_send(&rig->bus, &cf, 0), 0);
+		ch_run_idle(rig, 10 * MS);
+	}
+	assert_int_equal(sim_chip_rec(&node->sim), 89);
+	assert_int_equal(node->ev.state_count, 4);
+	assert_int_equal(node->ev.state[3], CAN_STATE_ERROR_ACTIVE);
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_ACTIVE);
+	assert_int_equal(node->ev.error[node->ev.error_count - 1].data[1],
+			 CAN_ERR_CRTL_ACTIVE);
+	assert_int_equal(node->ev.rx_count, 31);
+	ch_rig_free(rig);
+}
+
+static void test_receiver_recovery_without_errif(void **state)
+{
+	(void)state;
+	run_receiver_recovery(false);
+}
+
+static void test_receiver_recovery_with_errif(void **state)
+{
+	(void)state;
+	run_receiver_recovery(true);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_lone_node_goes_passive),
 		cmocka_unit_test(test_bus_off_and_the_chips_own_recovery),
 		cmocka_unit_test(test_restart_from_bus_off),
+		cmocka_unit_test(test_stop_in_bus_off),
 		cmocka_unit_test(test_bus_error_reporting),
 		cmocka_unit_test(test_bus_error_direction),
 		cmocka_unit_test(test_error_counters),
@@ -438,6 +518,8 @@ int main(void)
 		cmocka_unit_test(test_state_change_during_the_pass),
 		cmocka_unit_test(test_corrupted_reads_keep_the_state),
 		cmocka_unit_test(test_disagreeing_reads_keep_the_state),
+		cmocka_unit_test(test_receiver_recovery_without_errif),
+		cmocka_unit_test(test_receiver_recovery_with_errif),
 	};
 
 	return cmocka_run_group_tests_name("core_error", tests, NULL, NULL);

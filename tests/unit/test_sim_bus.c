@@ -354,8 +354,9 @@ static void test_one_shot(void **state)
 	simh_run_idle(&r->bus, 10 * MS);
 	assert_int_equal(r->log.count, 1);
 	assert_int_equal(simh_log_get(&r->log, 0)->cause, SIM_ERR_ACK);
+	/* DS21801 3.4 sets ABTF for ABAT only: by default none here */
 	assert_int_equal(simh_read(chip, MCP2510_REG_TXBCTRL(0)),
-			 MCP2510_TXBCTRL_ABTF | MCP2510_TXBCTRL_TXERR);
+			 MCP2510_TXBCTRL_TXERR);
 	assert_int_equal(simh_read(chip, MCP2510_REG_TEC), 8);
 	assert_false(simh_read(chip, MCP2510_REG_CANINTF) & MCP2510_INT_TX0);
 	assert_true(simh_read(chip, MCP2510_REG_CANINTF) & MCP2510_INT_MERR);
@@ -369,7 +370,18 @@ static void test_one_shot(void **state)
 	assert_int_equal(r->log.count, 2);
 	assert_int_equal(simh_log_get(&r->log, 1)->sender, SIM_NODE_PHANTOM);
 	assert_int_equal(simh_read(chip, MCP2510_REG_TXBCTRL(1)),
+			 MCP2510_TXBCTRL_MLOA);
+
+	/* the other reading: a failed one-shot attempt counts as aborted */
+	sim_chip_faults(chip)->abtf_on_one_shot = true;
+	cf = simh_frame(0x001, 0, NULL);
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 0), 0);
+	cf = simh_frame(0x321, 0, NULL);
+	simh_send(chip, 1, &cf);
+	simh_run_idle(&r->bus, 10 * MS);
+	assert_int_equal(simh_read(chip, MCP2510_REG_TXBCTRL(1)),
 			 MCP2510_TXBCTRL_ABTF | MCP2510_TXBCTRL_MLOA);
+	sim_chip_faults(chip)->abtf_on_one_shot = false;
 
 	/* and with an ACK it simply succeeds */
 	simh_send(chip, 2, &cf);
@@ -476,6 +488,78 @@ static void test_rx_overflow_and_rollover(void **state)
 	simh_run_idle(&r->bus, 10 * MS);
 	simh_read_rx(rx, 0, &got, true);
 	assert_int_equal(got.can_id, 0x7ff);
+}
+
+/*
+ * DS21801 3.4: ABTF is set only for an abort requested with ABAT; a
+ * buffer aborted by clearing its TXREQ shows no ABTF, whether it was
+ * waiting or on the bus (where the attempt finishes and, failed, is not
+ * repeated).
+ */
+static void test_abort_by_txreq_clear(void **state)
+{
+	struct rig *r = *state;
+	struct sim_chip *chip = &r->chip[0];
+	struct can_frame cf = simh_frame(0x10, 0, NULL);
+
+	simh_load_tx(chip, 0, &cf);
+	cf.can_id = 0x11;
+	simh_load_tx(chip, 1, &cf);
+	simh_rts(chip, MCP2510_RTS_TXB(0) | MCP2510_RTS_TXB(1));
+	sim_bus_advance(&r->bus, 0);		/* TXB1 goes on the (ACK-less) bus */
+	assert_false(sim_bus_idle(&r->bus));
+	simh_bit_modify(chip, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
+	assert_int_equal(simh_read(chip, MCP2510_REG_TXBCTRL(0)), 0);
+	simh_bit_modify(chip, MCP2510_REG_TXBCTRL(1), MCP2510_TXBCTRL_TXREQ, 0);
+	simh_run_idle(&r->bus, 10 * MS);
+	assert_int_equal(r->log.count, 1);
+	assert_int_equal(simh_read(chip, MCP2510_REG_TXBCTRL(1)),
+			 MCP2510_TXBCTRL_TXERR);
+	assert_int_equal(simh_read(chip, MCP2510_REG_TXBCTRL(0)), 0);
+}
+
+/*
+ * DS21801 7.7: a flag the chip set cannot be cleared by the MCU until its
+ * condition is removed; an overflow's condition is RXnOVR, which the MCU
+ * must clear (7.6.1).  So ERRIF stays set while RXnOVR is, by default.
+ */
+static void test_errif_held_by_overflow(void **state)
+{
+	struct rig *r = *state;
+	struct sim_chip *rx = &r->chip[1];
+	struct can_frame cf = simh_frame(0x100, 0, NULL);
+	unsigned int i;
+
+	simh_write(rx, MCP2510_REG_CANINTE, MCP2510_INT_ERR);
+	for (i = 0; i < 2; i++) {
+		simh_send(&r->chip[0], 0, &cf);
+		simh_run_idle(&r->bus, 10 * MS);
+	}
+	assert_int_equal(simh_read(rx, MCP2510_REG_EFLG), MCP2510_EFLG_RX0OVR);
+	/* ERRIF first: refused while RX0OVR stands, INT stays low */
+	simh_bit_modify(rx, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+	assert_true(simh_read(rx, MCP2510_REG_CANINTF) & MCP2510_INT_ERR);
+	assert_false(sim_chip_pin(rx, SIM_PIN_INT));
+	/* RX0OVR, then ERRIF: both go */
+	simh_bit_modify(rx, MCP2510_REG_EFLG, MCP2510_EFLG_RX0OVR, 0);
+	simh_bit_modify(rx, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+	assert_false(simh_read(rx, MCP2510_REG_CANINTF) & MCP2510_INT_ERR);
+	assert_true(sim_chip_pin(rx, SIM_PIN_INT));
+	/* other flags clear as before while RX0OVR stands */
+	simh_read_rx(rx, 0, &cf, true);
+	simh_send(&r->chip[0], 0, &cf);
+	simh_run_idle(&r->bus, 10 * MS);
+	simh_send(&r->chip[0], 0, &cf);
+	simh_run_idle(&r->bus, 10 * MS);
+	simh_bit_modify(rx, MCP2510_REG_CANINTF, MCP2510_INT_RX0, 0);
+	assert_false(simh_read(rx, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
+	assert_true(simh_read(rx, MCP2510_REG_CANINTF) & MCP2510_INT_ERR);
+
+	/* the other reading: ERRIF clears whatever RXnOVR says */
+	sim_chip_faults(rx)->errif_clearable_with_overflow = true;
+	simh_bit_modify(rx, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+	assert_false(simh_read(rx, MCP2510_REG_CANINTF) & MCP2510_INT_ERR);
+	assert_int_equal(simh_read(rx, MCP2510_REG_EFLG), MCP2510_EFLG_RX0OVR);
 }
 
 /* MCP2515 rollover codes in RX STATUS (DS21801 figure 12-9) */
@@ -701,6 +785,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_tx_priority, setup_one, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_one_shot, setup_one_2515, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_abort_all, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_abort_by_txreq_clear, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_errif_held_by_overflow, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_rx_overflow_and_rollover, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_rx_status_rollover, setup_one_2515, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_frame_timing, setup_two, simh_teardown),

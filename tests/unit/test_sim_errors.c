@@ -179,6 +179,102 @@ static void test_bus_off_and_recovery(void **state)
 	assert_int_equal(simh_read(&r->b, MCP2510_REG_REC), 31);
 }
 
+/* 32 destroyed attempts of one frame from A: bus-off */
+static void run_a_to_bus_off(struct rig *r)
+{
+	struct can_frame cf = simh_frame(0x0f0, 1, (const u8[]){ 7 });
+	unsigned int i;
+
+	sim_bus_faults(&r->bus)->bus_errors = 32;
+	simh_send(&r->a, 0, &cf);
+	for (i = 0; i < 32; i++)
+		next_frame(r);
+	assert_true(sim_chip_bus_off(&r->a));
+}
+
+static void request_config(struct sim_chip *chip)
+{
+	simh_bit_modify(chip, MCP2510_REG_CANCTRL, MCP2510_CANCTRL_REQOP_MASK,
+			FIELD_PREP(MCP2510_CANCTRL_REQOP_MASK,
+				   MCP2510_MODE_CONFIG));
+}
+
+static u8 opmode(struct sim_chip *chip)
+{
+	return FIELD_GET(MCP2510_CANSTAT_OPMOD_MASK,
+			 simh_read(chip, MCP2510_REG_CANSTAT));
+}
+
+/*
+ * DS21801 10.0 holds a mode request while transmissions are pending; a
+ * bus-off chip's buffer stays pending (it goes after the recovery).  By
+ * default the request waits for it; mode_change_in_bus_off takes the
+ * reading where bus-off lets it through at once.
+ */
+static void test_mode_change_in_bus_off(void **state)
+{
+	struct rig *r = *state;
+
+	run_a_to_bus_off(r);
+	request_config(&r->a);
+	sim_bus_advance(&r->bus, 5 * MS);
+	assert_int_equal(opmode(&r->a), MCP2510_MODE_NORMAL);
+	assert_true(sim_chip_bus_off(&r->a));
+	/* recovered, the frame goes out, and then the mode changes */
+	simh_run_idle(&r->bus, 100 * MS);
+	assert_int_equal(r->log.count, 33);
+	assert_int_equal(simh_log_get(&r->log, 32)->kind, SIM_REC_FRAME);
+	assert_int_equal(opmode(&r->a), MCP2510_MODE_CONFIG);
+
+	/* ABAT in bus-off ends the wait at once */
+	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_NORMAL), 0);
+	run_a_to_bus_off(r);
+	request_config(&r->a);
+	assert_int_equal(opmode(&r->a), MCP2510_MODE_NORMAL);
+	simh_bit_modify(&r->a, MCP2510_REG_CANCTRL, MCP2510_CANCTRL_ABAT, 0xff);
+	sim_bus_advance(&r->bus, 0);
+	assert_int_equal(opmode(&r->a), MCP2510_MODE_CONFIG);
+	assert_false(sim_chip_bus_off(&r->a));
+	simh_bit_modify(&r->a, MCP2510_REG_CANCTRL, MCP2510_CANCTRL_ABAT, 0);
+
+	/* the other reading: bus-off does not hold the request */
+	sim_chip_faults(&r->a)->mode_change_in_bus_off = true;
+	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_NORMAL), 0);
+	run_a_to_bus_off(r);
+	request_config(&r->a);
+	sim_bus_advance(&r->bus, 0);
+	assert_int_equal(opmode(&r->a), MCP2510_MODE_CONFIG);
+	assert_false(sim_chip_bus_off(&r->a));
+	assert_true(simh_read(&r->a, MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_TXREQ);
+}
+
+/*
+ * Whether ERRIF fires on a better error state the data sheets leave
+ * open.  By default it does not: the recovery from bus-off clears EFLG
+ * without a flag.  errif_on_decrease: it does.
+ */
+static void test_errif_on_decrease(void **state)
+{
+	struct rig *r = *state;
+	u64 recovery_ns = 128ULL * 11 * BIT_NS_125K;
+
+	run_a_to_bus_off(r);
+	simh_bit_modify(&r->a, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+	sim_bus_advance(&r->bus, recovery_ns);
+	assert_false(sim_chip_bus_off(&r->a));
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG), 0);
+	assert_false(simh_read(&r->a, MCP2510_REG_CANINTF) & MCP2510_INT_ERR);
+	simh_run_idle(&r->bus, 10 * MS);
+
+	sim_chip_faults(&r->a)->errif_on_decrease = true;
+	run_a_to_bus_off(r);
+	simh_bit_modify(&r->a, MCP2510_REG_CANINTF, MCP2510_INT_ERR, 0);
+	sim_bus_advance(&r->bus, recovery_ns);
+	assert_false(sim_chip_bus_off(&r->a));
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG), 0);
+	assert_true(simh_read(&r->a, MCP2510_REG_CANINTF) & MCP2510_INT_ERR);
+}
+
 /*
  * Traffic counts too: every frame, even one ending in an error frame
  * (delimiter 8 + intermission 3), gives 11 recessive bits.  Here the
@@ -485,6 +581,8 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup_teardown(test_lone_node_goes_error_passive, setup_one, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_bus_off_and_recovery, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_mode_change_in_bus_off, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_errif_on_decrease, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_bus_off_recovery_on_busy_bus, setup_one, simh_teardown),
 		cmocka_unit_test(test_bit_rate_mismatch),
 		cmocka_unit_test_setup_teardown(test_bit_rate_tolerance, setup_one, simh_teardown),

@@ -79,10 +79,12 @@ static void test_slow_mode_change(void **state)
 }
 
 /*
- * DS21801 10.0: the mode changes only once the transmission in progress
- * is over; DS21801 10.1: entering configuration mode clears TEC and REC.
+ * DS21801 10.0: the mode does not change until all pending transmissions
+ * are complete, which a lone sender's never are (no ACK, retried for
+ * ever): only an abort lets the request through.  DS21801 10.1: entering
+ * configuration mode clears TEC and REC.
  */
-static void test_mode_change_waits_for_frame(void **state)
+static void test_mode_change_waits_for_pending(void **state)
 {
 	struct rig *r = *state;
 	struct can_frame cf = simh_frame(0x10, 8, (const u8[8]){ 0 });
@@ -91,19 +93,76 @@ static void test_mode_change_waits_for_frame(void **state)
 	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_NORMAL), 0);
 	simh_send(&r->a, 0, &cf);		/* alone: ACK errors */
 	sim_bus_advance(&r->bus, 0);
-	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));
-	sim_bus_advance(&r->bus, 1);		/* the retry is on the bus */
+	sim_bus_advance(&r->bus, 1);
 	assert_false(sim_bus_idle(&r->bus));
 	request_mode(&r->a, MCP2510_MODE_CONFIG);
+	sim_bus_advance(&r->bus, 20 * MS);
 	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_NORMAL);
-	sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));
+	assert_true(simh_read(&r->a, MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_TXREQ);
+	assert_true(sim_chip_tec(&r->a) >= 128);
+	/* the driver polling for the mode times out */
+	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_CONFIG), -ETIMEDOUT);
+
+	/* abort: the attempt on the bus ends, not retried, then the mode changes */
+	simh_bit_modify(&r->a, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
+	simh_run_idle(&r->bus, 10 * MS);
 	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_CONFIG);
 	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 0);
-	/* the request stays pending, but nothing is sent in configuration mode */
-	assert_true(simh_read(&r->a, MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_TXREQ);
-	sim_bus_advance(&r->bus, 10 * MS);
+	assert_false(simh_read(&r->a, MCP2510_REG_TXBCTRL(0)) & MCP2510_TXBCTRL_TXREQ);
 	assert_true(sim_bus_idle(&r->bus));
 	assert_int_equal(sim_bus_next_event(&r->bus), U64_MAX);
+}
+
+/*
+ * DS21801 10.0 again: buffers waiting for the bus count as pending, not
+ * only the frame on it.  ABAT (3.4) ends the wait for the waiting ones;
+ * the mode then follows the frame in flight.
+ */
+static void test_mode_change_waits_for_queued(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x20, 2, (const u8[]){ 1, 2 });
+	unsigned int n;
+
+	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_NORMAL), 0);
+	for (n = 0; n < 3; n++)
+		simh_load_tx(&r->a, n, &cf);
+	simh_rts(&r->a, MCP2510_RTS_ALL);
+	request_mode(&r->a, MCP2510_MODE_CONFIG);
+	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_NORMAL);
+	simh_run_idle(&r->bus, 10 * MS);
+	assert_int_equal(sim_chip_counters(&r->a)->frames_tx, 3);
+	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_CONFIG);
+
+	/* the same in loopback mode: the frames go round first */
+	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_LOOPBACK), 0);
+	simh_rts(&r->a, MCP2510_RTS_ALL);
+	request_mode(&r->a, MCP2510_MODE_NORMAL);
+	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_LOOPBACK);
+	simh_run_idle(&r->bus, 10 * MS);
+	assert_int_equal(sim_chip_counters(&r->a)->frames_tx, 6);
+	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_NORMAL);
+
+	/* ABAT: the waiting buffers go at once, the mode after the frame in flight */
+	simh_rts(&r->a, MCP2510_RTS_ALL);
+	sim_bus_advance(&r->bus, 0);
+	assert_false(sim_bus_idle(&r->bus));
+	request_mode(&r->a, MCP2510_MODE_LISTEN_ONLY);
+	simh_bit_modify(&r->a, MCP2510_REG_CANCTRL, MCP2510_CANCTRL_ABAT, 0xff);
+	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_NORMAL);
+	simh_run_idle(&r->bus, 10 * MS);
+	assert_int_equal(sim_chip_counters(&r->a)->frames_tx, 7);
+	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_LISTEN_ONLY);
+	for (n = 0; n < 2; n++)
+		assert_int_equal(simh_read(&r->a, MCP2510_REG_TXBCTRL(n)),
+				 MCP2510_TXBCTRL_ABTF);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TXBCTRL(2)), 0);
+
+	/* no transmissions in listen-only mode: nothing holds a request there */
+	simh_bit_modify(&r->a, MCP2510_REG_CANCTRL, MCP2510_CANCTRL_ABAT, 0);
+	simh_rts(&r->a, MCP2510_RTS_TXB(0));
+	request_mode(&r->a, MCP2510_MODE_CONFIG);
+	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_CONFIG);
 }
 
 /*
@@ -315,21 +374,22 @@ static void test_loopback_alone(void **state)
 	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_LOOPBACK), 0);
 	simh_send(&r->a, 0, &cf);
 	simh_send(&r->a, 1, &cf);
-	/* a mode change waits for the frame going round */
+	/* a mode change waits for both frames (DS21801 10.0: all pending) */
 	sim_bus_advance(&r->bus, 0);
 	request_mode(&r->a, MCP2510_MODE_CONFIG);
 	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_LOOPBACK);
 	simh_run_idle(&r->bus, 10 * MS);
 	assert_int_equal(simh_opmode(&r->a), MCP2510_MODE_CONFIG);
 	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 0);
-	assert_int_equal(sim_chip_counters(&r->a)->frames_tx, 1);
+	assert_int_equal(sim_chip_counters(&r->a)->frames_tx, 2);
 }
 
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup_teardown(test_slow_mode_change, setup_2510, simh_teardown),
-		cmocka_unit_test_setup_teardown(test_mode_change_waits_for_frame, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_mode_change_waits_for_pending, setup_2510, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_mode_change_waits_for_queued, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_sleep_and_wake_on_bus, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_wake_by_spi_slow, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_filters_and_rxm, setup_2510, simh_teardown),
