@@ -506,7 +506,7 @@ static void test_abort_by_txreq_clear(void **state)
 	cf.can_id = 0x11;
 	simh_load_tx(chip, 1, &cf);
 	simh_rts(chip, MCP2510_RTS_TXB(0) | MCP2510_RTS_TXB(1));
-	sim_bus_advance(&r->bus, 0);		/* TXB1 goes on the (ACK-less) bus */
+	sim_bus_advance(&r->bus, BIT_NS_125K);	/* TXB1 goes on the (ACK-less) bus */
 	assert_false(sim_bus_idle(&r->bus));
 	simh_bit_modify(chip, MCP2510_REG_TXBCTRL(0), MCP2510_TXBCTRL_TXREQ, 0);
 	assert_int_equal(simh_read(chip, MCP2510_REG_TXBCTRL(0)), 0);

@@ -145,7 +145,8 @@ static void test_mode_change_waits_for_queued(void **state)
 
 	/* ABAT: the waiting buffers go at once, the mode after the frame in flight */
 	simh_rts(&r->a, MCP2510_RTS_ALL);
-	sim_bus_advance(&r->bus, 0);
+	/* the start-of-frame bit: the arbitration window closes */
+	sim_bus_advance(&r->bus, 1000000000u / sim_chip_bitrate(&r->a));
 	assert_false(sim_bus_idle(&r->bus));
 	request_mode(&r->a, MCP2510_MODE_LISTEN_ONLY);
 	simh_bit_modify(&r->a, MCP2510_REG_CANCTRL, MCP2510_CANCTRL_ABAT, 0xff);
