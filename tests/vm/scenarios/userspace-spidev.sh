@@ -155,6 +155,8 @@ fi
 cat /tmp/err.txt
 grep -q "^mcp2510ctl: INT line gpiochip99:0: .*(spidev:$dev itself opens fine)" \
 	/tmp/err.txt || fail "a missing gpiochip was not named"
+# filter alone accepts every frame again, for what follows
+ctl filter >/dev/null || fail "mcp2510ctl filter (accept all) failed"
 
 echo "== the libgpiod 2 build: mcp2510ctl-gpiod2 <-> can0"
 command -v mcp2510ctl-gpiod2 >/dev/null ||
