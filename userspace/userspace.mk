@@ -224,7 +224,7 @@ us_unit_transport_srcs = $(filter-out %/gpio_spec.c %/gpio_int_v$(US_GPIOD_MAJOR
 US_UNIT_TRANSPORT_SRCS := $(call us_unit_transport_srcs,1)
 US_UNIT_GPIO_V2_SRCS := $(call us_unit_transport_srcs,2)
 US_UNIT_CTL_SRCS := $(filter-out %/mcp2510ctl.c,$(US_CTL_SRCS)) \
-		    $(US_DIR)/tools/bridge.c $(US_UNIT_TEXT_SRCS)
+		    $(US_UNIT_TEXT_SRCS)
 
 US_UNIT_BRIDGE_SRCS := $(US_DIR)/tools/bridge.c $(US_UNIT_LIB_SRCS)
 US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(wildcard \

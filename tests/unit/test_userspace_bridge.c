@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * mcp2510d's bridge as a service: bus-off handled as the kernel's can-dev
+ * mcp2510d's bridge: frames both ways, what it ignores, a stop request
+ * and a vanished interface; and as a service: bus-off handled as the kernel's can-dev
  * handles it (off the bus until a restart, by hand or after restart_ms,
  * reported with error frames), a socket that refuses frames (ENOBUFS)
  * served again later without losing them, the receive queue's drop count
@@ -19,6 +20,7 @@
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
+#include <sys/eventfd.h>
 #include <sys/socket.h>
 #include <cmocka.h>
 #include <linux/can/error.h>
@@ -135,6 +137,66 @@ static void go_bus_off(struct rig *r)
 	assert_int_equal(r->b.counts.restarts, 0);
 	/* the frame that never made it is an aborted one */
 	assert_int_equal(r->b.counts.chip_drops, 1);
+}
+
+static void test_bridge_socket_to_bus(void **state)
+{
+	struct rig *r = rig_new("sim:bridge", 0);
+	struct can_frame cf = { .can_id = 0x321, .len = 2, .data = { 7, 8 } };
+	struct can_frame err = { .can_id = CAN_ERR_FLAG | CAN_ERR_BUSERROR,
+				 .len = CAN_ERR_DLC };
+	struct mcp2510_event ev;
+
+	(void)state;
+	assert_int_equal(write(r->sv[1], &err, sizeof(err)), sizeof(err));
+	assert_int_equal(write(r->sv[1], &cf, sizeof(cf)), sizeof(cf));
+	pump(r, 3);
+	assert_int_equal(r->b.counts.ignored, 1);
+	assert_int_equal(r->b.counts.to_chip, 1);
+	do
+		assert_int_equal(mcp2510_recv(r->peer, &ev, 100), 0);
+	while (ev.type != MCP2510_EVENT_RX);
+	assert_int_equal(ev.frame.can_id, 0x321);
+	assert_memory_equal(ev.frame.data, cf.data, 2);
+	rig_free(r);
+}
+
+static void test_bridge_bus_to_socket(void **state)
+{
+	struct rig *r = rig_new("sim:bridge", 0);
+	struct can_frame cf = { .can_id = 0x1234 | CAN_EFF_FLAG, .len = 1,
+				.data = { 9 } }, got;
+
+	(void)state;
+	assert_int_equal(mcp2510_send(r->peer, &cf, 0), 0);
+	pump(r, 3);
+	assert_int_equal(read(r->sv[1], &got, sizeof(got)), sizeof(got));
+	assert_int_equal(got.can_id, cf.can_id);
+	assert_int_equal(got.data[0], 9);
+	assert_int_equal(r->b.counts.to_socket, 1);
+	/* what the bridge sent itself does not come back */
+	assert_int_equal(read(r->sv[1], &got, sizeof(got)), -1);
+	assert_int_equal(errno, EAGAIN);
+	rig_free(r);
+}
+
+static void test_bridge_stops_and_fails(void **state)
+{
+	struct rig *r = rig_new("sim:bridge", 0);
+	uint64_t one = 1;
+	int stop = eventfd(0, EFD_CLOEXEC);
+
+	(void)state;
+	assert_int_equal(bridge_poll(&r->b, stop, 0), 0);
+	assert_int_equal(write(stop, &one, sizeof(one)), sizeof(one));
+	assert_int_equal(bridge_poll(&r->b, stop, 1000), 1);
+	close(stop);
+	/* the interface went away */
+	close(r->sv[1]);
+	r->sv[1] = eventfd(0, EFD_CLOEXEC);
+	assert_int_equal(bridge_poll(&r->b, -1, 100), -1);
+	assert_int_equal(errno, ECONNRESET);
+	rig_free(r);
 }
 
 static void test_bus_off_waits_for_a_manual_restart(void **state)
@@ -340,6 +402,9 @@ static void test_stats_lines(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_bridge_socket_to_bus),
+		cmocka_unit_test(test_bridge_bus_to_socket),
+		cmocka_unit_test(test_bridge_stops_and_fails),
 		cmocka_unit_test(test_bus_off_waits_for_a_manual_restart),
 		cmocka_unit_test(test_bus_off_restarts_after_restart_ms),
 		cmocka_unit_test(test_refused_writes_are_retried),

@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * mcp2510ctl through its testable main (arguments in, exit status and
- * both output streams out) and mcp2510d's bridge over a datagram socket
- * pair standing in for a CAN_RAW socket.
+ * both output streams out).
  */
 #define _GNU_SOURCE
-#include <errno.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -14,12 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include <sys/eventfd.h>
-#include <sys/socket.h>
 #include <cmocka.h>
-#include <linux/can/error.h>
 
-#include "bridge.h"
 #include "ctl.h"
 
 struct run {
@@ -412,109 +406,6 @@ static void test_device_failures(void **state)
 				  "123#", NULL), EXIT_FAIL, "not acknowledged");
 }
 
-/* ---- the bridge -------------------------------------------------------- */
-
-struct bridge_rig {
-	struct mcp2510 *chip, *peer;
-	int sv[2];			/* sv[0]: the bridge's, sv[1]: ours */
-	struct bridge b;
-};
-
-static struct mcp2510 *up(const char *bus)
-{
-	struct mcp2510 *h = mcp2510_open(bus, NULL);
-
-	assert_non_null(h);
-	assert_int_equal(mcp2510_set_bitrate(h, 250000, 0), 0);
-	assert_int_equal(mcp2510_up(h), 0);
-	return h;
-}
-
-static int rig_setup(void **state)
-{
-	struct bridge_rig *r = calloc(1, sizeof(*r));
-
-	r->chip = up("sim:bridge");
-	r->peer = up("sim:bridge");
-	assert_int_equal(socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_NONBLOCK, 0,
-				    r->sv), 0);
-	bridge_init(&r->b, r->chip, r->sv[0]);
-	*state = r;
-	return 0;
-}
-
-static int rig_teardown(void **state)
-{
-	struct bridge_rig *r = *state;
-
-	mcp2510_close(r->chip);
-	mcp2510_close(r->peer);
-	close(r->sv[0]);
-	close(r->sv[1]);
-	free(r);
-	return 0;
-}
-
-static void pump(struct bridge_rig *r, unsigned int rounds)
-{
-	while (rounds--)
-		assert_int_equal(bridge_poll(&r->b, -1, 10), 0);
-}
-
-static void test_bridge_socket_to_bus(void **state)
-{
-	struct bridge_rig *r = *state;
-	struct can_frame cf = { .can_id = 0x321, .len = 2, .data = { 7, 8 } };
-	struct can_frame err = { .can_id = CAN_ERR_FLAG | CAN_ERR_BUSERROR,
-				 .len = CAN_ERR_DLC };
-	struct mcp2510_event ev;
-
-	assert_int_equal(write(r->sv[1], &err, sizeof(err)), sizeof(err));
-	assert_int_equal(write(r->sv[1], &cf, sizeof(cf)), sizeof(cf));
-	pump(r, 3);
-	assert_int_equal(r->b.counts.ignored, 1);
-	assert_int_equal(r->b.counts.to_chip, 1);
-	do
-		assert_int_equal(mcp2510_recv(r->peer, &ev, 100), 0);
-	while (ev.type != MCP2510_EVENT_RX);
-	assert_int_equal(ev.frame.can_id, 0x321);
-	assert_memory_equal(ev.frame.data, cf.data, 2);
-}
-
-static void test_bridge_bus_to_socket(void **state)
-{
-	struct bridge_rig *r = *state;
-	struct can_frame cf = { .can_id = 0x1234 | CAN_EFF_FLAG, .len = 1,
-				.data = { 9 } }, got;
-
-	assert_int_equal(mcp2510_send(r->peer, &cf, 0), 0);
-	pump(r, 3);
-	assert_int_equal(read(r->sv[1], &got, sizeof(got)), sizeof(got));
-	assert_int_equal(got.can_id, cf.can_id);
-	assert_int_equal(got.data[0], 9);
-	assert_int_equal(r->b.counts.to_socket, 1);
-	/* what the bridge sent itself does not come back */
-	assert_int_equal(read(r->sv[1], &got, sizeof(got)), -1);
-	assert_int_equal(errno, EAGAIN);
-}
-
-static void test_bridge_stops_and_fails(void **state)
-{
-	struct bridge_rig *r = *state;
-	uint64_t one = 1;
-	int stop = eventfd(0, EFD_CLOEXEC);
-
-	assert_int_equal(bridge_poll(&r->b, stop, 0), 0);
-	assert_int_equal(write(stop, &one, sizeof(one)), sizeof(one));
-	assert_int_equal(bridge_poll(&r->b, stop, 1000), 1);
-	close(stop);
-	/* the interface went away */
-	close(r->sv[1]);
-	r->sv[1] = eventfd(0, EFD_CLOEXEC);
-	assert_int_equal(bridge_poll(&r->b, -1, 100), -1);
-	assert_int_equal(errno, ECONNRESET);
-}
-
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -528,12 +419,6 @@ int main(void)
 		cmocka_unit_test(test_messages_name_the_cause),
 		cmocka_unit_test(test_command_line),
 		cmocka_unit_test(test_filter_option_applies),
-		cmocka_unit_test_setup_teardown(test_bridge_socket_to_bus,
-						rig_setup, rig_teardown),
-		cmocka_unit_test_setup_teardown(test_bridge_bus_to_socket,
-						rig_setup, rig_teardown),
-		cmocka_unit_test_setup_teardown(test_bridge_stops_and_fails,
-						rig_setup, rig_teardown),
 	};
 
 	return cmocka_run_group_tests_name("userspace_ctl", tests, NULL, NULL);
