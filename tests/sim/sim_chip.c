@@ -21,6 +21,8 @@
 #define SIM_MASK_SIDL_MASK	0xe3	/* SID2..0, EID17..16 */
 #define SIM_TXB_SIDL_MASK	0xeb
 #define SIM_TXB_DLC_MASK	(MCP2510_DLC_RTR | MCP2510_DLC_MASK)
+#define SIM_RXB_SIDL_MASK	0xfb	/* bit 2 unimplemented */
+#define SIM_RXB_DLC_MASK	0x7f	/* bit 7 unimplemented */
 #define SIM_TXBCTRL_WMASK	(MCP2510_TXBCTRL_TXREQ | MCP2510_TXBCTRL_TXP_MASK)
 #define SIM_TXBCTRL_FLAGS	(MCP2510_TXBCTRL_ABTF | MCP2510_TXBCTRL_MLOA | \
 				 MCP2510_TXBCTRL_TXERR)
@@ -994,11 +996,66 @@ static u8 sim_rx_status(const struct sim_chip *chip)
 	return s;
 }
 
-static void sim_chip_reset(struct sim_chip *chip)
+/*
+ * Bits the register legends mark "x", unknown at power-on (DS21801 and
+ * DS21291 registers 3-3..3-8, 4-4..4-9 and the filter and mask registers
+ * 4-10..4-17): SIDH..D7 of the transmit and receive buffers, the filters
+ * and the masks.  Their unimplemented bits read 0.  Everything else
+ * powers up as a number ("R/W-0" and the like).
+ */
+static u8 sim_unknown_mask(unsigned int addr)
 {
-	unsigned int n;
+	unsigned int off = addr & 0x0f;
+	bool rx = addr >= MCP2510_REG_RXB(0);
 
-	memset(chip->regs, 0, sizeof(chip->regs));
+	if (addr < MCP2510_REG_RXM(0) + 2 * MCP2510_ID_LEN) {
+		if (off >= 3 * MCP2510_ID_LEN)
+			return 0;	/* control registers at 0xXc..0xXf */
+		if ((addr & 3) != MCP2510_ID_SIDL)
+			return 0xff;
+		return addr >= MCP2510_REG_RXM(0) ? SIM_MASK_SIDL_MASK :
+		       SIM_FILTER_SIDL_MASK;
+	}
+	if (addr < MCP2510_REG_TXB(0) || off < MCP2510_BUF_SIDH ||
+	    off >= MCP2510_BUF_LEN)
+		return 0;
+	if (off == MCP2510_BUF_SIDL)
+		return rx ? SIM_RXB_SIDL_MASK : SIM_TXB_SIDL_MASK;
+	if (off == MCP2510_BUF_DLC)
+		return rx ? SIM_RXB_DLC_MASK : SIM_TXB_DLC_MASK;
+	return 0xff;
+}
+
+/* A Weyl sequence through a 32-bit finaliser: every seed, even 0, is fine. */
+static u8 sim_unknown_byte(struct sim_chip *chip)
+{
+	u32 z;
+
+	chip->unknown_state += 0x9e3779b9u;
+	z = chip->unknown_state;
+	z = (z ^ (z >> 16)) * 0x85ebca6bu;
+	z = (z ^ (z >> 13)) * 0xc2b2ae35u;
+	return (z ^ (z >> 16)) >> 24;
+}
+
+/*
+ * Power-on (power_on) or RESET.  The "x" registers get new garbage, or
+ * with faults.reset_keeps_unknown keep theirs through a RESET; all other
+ * registers take their reset values.
+ */
+static void sim_chip_reset(struct sim_chip *chip, bool power_on)
+{
+	bool keep = !power_on && chip->faults.reset_keeps_unknown;
+	unsigned int n, addr;
+
+	for (addr = 0; addr < MCP2510_REG_COUNT; addr++) {
+		u8 mask = sim_unknown_mask(addr);
+
+		if (mask && !keep)
+			chip->regs[addr] = sim_unknown_byte(chip) & mask;
+		else
+			chip->regs[addr] &= mask;
+	}
 	chip->regs[MCP2510_REG_CANCTRL] = chip->variant == SIM_MCP2515 ?
 					  MCP2515_RESET_CANCTRL :
 					  MCP2510_RESET_CANCTRL;
@@ -1051,7 +1108,7 @@ static bool sim_spi_execute(struct sim_chip *chip, const u8 *tx, u8 *rx,
 
 	switch (instr) {
 	case MCP2510_INSTR_RESET:
-		sim_chip_reset(chip);
+		sim_chip_reset(chip, false);
 		return true;
 	case MCP2510_INSTR_READ:
 		if (len > 2)
@@ -1159,6 +1216,12 @@ void sim_chip_spi(struct sim_chip *chip, const u8 *tx, u8 *rx, size_t len)
 
 int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz)
 {
+	return sim_chip_init_seeded(chip, variant, osc_hz, SIM_DEFAULT_SEED);
+}
+
+int sim_chip_init_seeded(struct sim_chip *chip, enum sim_variant variant,
+			 u32 osc_hz, u32 seed)
+{
 	unsigned int i;
 
 	if ((variant != SIM_MCP2510 && variant != SIM_MCP2515) ||
@@ -1173,7 +1236,8 @@ int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz)
 		chip->rts_level[i] = true;
 	for (i = 0; i < SIM_PIN_COUNT; i++)
 		chip->pin_level[i] = true;
-	sim_chip_reset(chip);
+	chip->unknown_state = seed;
+	sim_chip_reset(chip, true);
 	return 0;
 }
 
@@ -1183,7 +1247,7 @@ void sim_chip_power(struct sim_chip *chip, bool on)
 		return;
 	chip->powered = on;
 	if (on)
-		sim_chip_reset(chip);
+		sim_chip_reset(chip, true);
 	else
 		memset(&chip->tx, 0, sizeof(chip->tx));
 	sim_chip_update_pins(chip);
@@ -1193,7 +1257,7 @@ void sim_chip_reset_pin(struct sim_chip *chip)
 {
 	if (!chip->powered)
 		return;
-	sim_chip_reset(chip);
+	sim_chip_reset(chip, false);
 	sim_chip_update_pins(chip);
 }
 

@@ -288,6 +288,66 @@ static void test_receive_modes(void **state)
 	ch_rig_free(rig);
 }
 
+/* Every filter and mask byte holds what the core's filters encode to. */
+static void assert_filters_programmed(struct ch_node *node)
+{
+	const struct mcp2510_filters *f = &node->core.filters;
+	u8 want[MCP2510_ID_LEN];
+	unsigned int i, k;
+
+	for (i = 0; i < MCP2510_FILTER_COUNT; i++) {
+		mcp2510_filter_id_encode(&f->filter[i], false, want);
+		for (k = 0; k < MCP2510_ID_LEN; k++)
+			assert_int_equal(sim_chip_peek(&node->sim,
+						       MCP2510_REG_RXF(i) + k),
+					 want[k]);
+	}
+	for (i = 0; i < MCP2510_MASK_COUNT; i++) {
+		mcp2510_filter_id_encode(&f->mask[i], true, want);
+		for (k = 0; k < MCP2510_ID_LEN; k++)
+			assert_int_equal(sim_chip_peek(&node->sim,
+						       MCP2510_REG_RXM(i) + k),
+					 want[k]);
+	}
+}
+
+/*
+ * The filters and masks power up unknown (DS21801 registers 4-10..4-17,
+ * "x") and the model fills them with garbage, new at every power-up and,
+ * by default, at every RESET.  The core writes every byte of them, so
+ * whatever they held, the default configuration takes every frame; also
+ * under the reading where RESET keeps what power-up left.
+ */
+static void test_filters_do_not_rely_on_reset_values(void **state)
+{
+	unsigned int round;
+
+	(void)state;
+	for (round = 0; round < 8; round++) {
+		struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2515);
+		bool got[ARRAY_SIZE(mixed_ids)];
+		unsigned int k;
+
+		/* other garbage each round: power-cycle node 0 a few times */
+		for (k = 0; k < round; k++) {
+			sim_chip_power(&rig->node[0].sim, false);
+			sim_chip_power(&rig->node[0].sim, true);
+		}
+		sim_chip_faults(&rig->node[0].sim)->reset_keeps_unknown = round & 1;
+		assert_int_equal(ch_start(&rig->node[0], 500000, 0), 0);
+		assert_int_equal(ch_start(&rig->node[1], 500000, 0), 0);
+		assert_filters_programmed(&rig->node[0]);
+		assert_int_equal(deliver(rig, mixed_ids, ARRAY_SIZE(mixed_ids),
+					 got), ARRAY_SIZE(mixed_ids));
+		/* a restart resets the chip: everything is written again */
+		assert_int_equal(mcp2510_restart(&rig->node[0].core), 0);
+		assert_filters_programmed(&rig->node[0]);
+		assert_int_equal(deliver(rig, mixed_ids, ARRAY_SIZE(mixed_ids),
+					 got), ARRAY_SIZE(mixed_ids));
+		ch_rig_free(rig);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -300,6 +360,7 @@ int main(void)
 		cmocka_unit_test(test_default_accepts_everything),
 		cmocka_unit_test(test_an739_example),
 		cmocka_unit_test(test_receive_modes),
+		cmocka_unit_test(test_filters_do_not_rely_on_reset_values),
 	};
 
 	return cmocka_run_group_tests_name("core_filter", tests, NULL, NULL);
