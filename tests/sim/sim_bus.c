@@ -397,13 +397,15 @@ static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
 
 	for (i = 0; i < bus->nchips; i++) {
 		struct sim_chip *chip = bus->chips[i];
+		bool heard;
 
 		if (!(bus->cur_listeners & (1U << i)) || !sim_chip_listening(chip))
 			continue;
-		if (valid && sim_rates_match(sim_chip_bit_ns(chip), bus->cur_ns))
+		heard = sim_rates_match(sim_chip_bit_ns(chip), bus->cur_ns);
+		if (valid && heard)
 			sim_chip_rx_ok(chip, &bus->cur.frame);
 		else
-			sim_chip_rx_error(chip);
+			sim_chip_rx_error(chip, heard ? &bus->cur.frame : NULL);
 	}
 }
 

@@ -255,8 +255,12 @@ static void sim_chip_enter_mode(struct sim_chip *chip, unsigned int mode)
 {
 	chip->opmode = mode;
 	chip->mode_pending = false;
-	/* DS21801 10.1: entering configuration mode clears the error counters */
-	if (mode == MCP2510_MODE_CONFIG)
+	/*
+	 * DS21801 10.1: entering configuration mode clears the error
+	 * counters.  DS21801 10.3: in listen-only mode they "are reset and
+	 * deactivated" (rx_ok and rx_error count nothing there).
+	 */
+	if (mode == MCP2510_MODE_CONFIG || mode == MCP2510_MODE_LISTEN_ONLY)
 		sim_chip_clear_counters(chip);
 }
 
@@ -566,9 +570,13 @@ static bool sim_filter_match(const struct sim_chip *chip, unsigned int f,
 	return !((frame ^ fbits) & mbits);
 }
 
-/* DS21801 4.2: RXM selects which frames a buffer takes. */
+/*
+ * DS21801 4.2: RXM selects which frames a buffer takes; RXM 00..10 only
+ * valid ones.  A frame destroyed by an error (!valid) only reaches a
+ * buffer with RXM 11.
+ */
 static int sim_rxb_accept(const struct sim_chip *chip, unsigned int n,
-			  const struct can_frame *cf)
+			  const struct can_frame *cf, bool valid)
 {
 	u8 rxm = FIELD_GET(MCP2510_RXBCTRL_RXM_MASK,
 			   chip->regs[MCP2510_REG_RXBCTRL(n)]);
@@ -577,6 +585,8 @@ static int sim_rxb_accept(const struct sim_chip *chip, unsigned int n,
 
 	if (rxm == MCP2510_RXM_ANY)
 		return first;
+	if (!valid)
+		return -1;
 	if ((rxm == MCP2510_RXM_STD && ext) || (rxm == MCP2510_RXM_EXT && !ext))
 		return -1;
 	for (f = first; f <= last; f++)
@@ -639,14 +649,16 @@ static void sim_rx_overflow(struct sim_chip *chip, unsigned int n)
 }
 
 /*
- * The message assembly buffer holds a valid frame.  AN739: RXB0's mask
- * and filters first, and a frame RXB0 takes never reaches RXB1's filters;
- * a full RXB0 passes it on only with BUKT (FILHIT 0/1 in RXB1).  A full
- * buffer is never overwritten: RXnIF locks it and RXnOVR records the loss.
+ * The message assembly buffer holds a frame, valid or (listen-only mode)
+ * destroyed by an error.  AN739: RXB0's mask and filters first, and a
+ * frame RXB0 takes never reaches RXB1's filters; a full RXB0 passes it on
+ * only with BUKT (FILHIT 0/1 in RXB1).  A full buffer is never
+ * overwritten: RXnIF locks it and RXnOVR records the loss.
  */
-static void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf)
+static void sim_chip_take(struct sim_chip *chip, const struct can_frame *cf,
+			  bool valid)
 {
-	int f = sim_rxb_accept(chip, 0, cf);
+	int f = sim_rxb_accept(chip, 0, cf, valid);
 
 	if (f >= 0) {
 		if (!sim_rxb_full(chip, 0))
@@ -659,13 +671,18 @@ static void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf)
 			sim_rx_overflow(chip, 1);
 		return;
 	}
-	f = sim_rxb_accept(chip, 1, cf);
+	f = sim_rxb_accept(chip, 1, cf, valid);
 	if (f < 0)
 		return;
 	if (sim_rxb_full(chip, 1))
 		sim_rx_overflow(chip, 1);
 	else
 		sim_rxb_load(chip, 1, cf, f, false);
+}
+
+static void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf)
+{
+	sim_chip_take(chip, cf, true);
 }
 
 /* A frame arrived without error (CAN 2.0B rule 8 for REC). */
@@ -682,14 +699,26 @@ void sim_chip_rx_ok(struct sim_chip *chip, const struct can_frame *cf)
 	sim_chip_update_pins(chip);
 }
 
-/* This chip detected an error as a receiver (rule 1: REC + 1). */
-void sim_chip_rx_error(struct sim_chip *chip)
+/*
+ * This chip detected an error as a receiver (rule 1: REC + 1).  heard is
+ * the frame the error destroyed when this chip could follow it (same bit
+ * rate), else NULL.
+ *
+ * DS21801 10.3 (AN739 "Listen-only Mode" likewise): listen-only mode
+ * receives "all messages (including messages with errors)" by setting
+ * RXM to 11.  What the buffer then holds is not said; the model takes
+ * the reading hardest on a driver: the frame as sent, loaded like a valid
+ * one, nothing in the buffer telling it apart (MERRF is the only trace).
+ */
+void sim_chip_rx_error(struct sim_chip *chip, const struct can_frame *heard)
 {
 	*sim_reg(chip, MCP2510_REG_CANINTF) |= MCP2510_INT_MERR;
 	chip->counters.rx_errors++;
-	/* listen-only mode sends no error flags and keeps its counters */
+	/* listen-only mode sends no error flags, its counters are inactive */
 	if (chip->opmode == MCP2510_MODE_NORMAL && chip->rec < 255)
 		chip->rec++;
+	if (chip->opmode == MCP2510_MODE_LISTEN_ONLY && heard)
+		sim_chip_take(chip, heard, false);
 	sim_chip_update_eflg(chip);
 	sim_chip_update_pins(chip);
 }
