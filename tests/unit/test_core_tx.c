@@ -238,7 +238,7 @@ static void test_three_frames_keep_their_order(void **state)
 
 /*
  * The transmit buffers' SIDH..D7 power up unknown (DS21801 registers
- * 3-2..3-8, "x") and the model fills them with garbage.  The first frame
+ * 3-3..3-8, "x") and the model fills them with garbage.  The first frame
  * of every buffer, of every kind, goes out exactly as submitted: the core
  * writes the identifier and DLC whole and the data bytes the DLC covers
  * (bytes past the DLC are never sent), whatever a buffer held.
