@@ -257,8 +257,8 @@ static void sim_chip_enter_mode(struct sim_chip *chip, unsigned int mode)
 	chip->mode_pending = false;
 	/*
 	 * DS21801 10.1: entering configuration mode clears the error
-	 * counters.  DS21801 10.3: in listen-only mode they "are reset and
-	 * deactivated" (rx_ok and rx_error count nothing there).
+	 * counters.  DS21801 10.3: in listen-only mode they are reset and
+	 * deactivated (rx_ok and rx_error count nothing there).
 	 */
 	if (mode == MCP2510_MODE_CONFIG || mode == MCP2510_MODE_LISTEN_ONLY)
 		sim_chip_clear_counters(chip);
