@@ -159,17 +159,53 @@ void mcp2510_filter_id_encode(const struct mcp2510_filter_id *id,
 }
 
 /*
+ * What goes into the chip.  In listen-only mode a buffer with RXM 11
+ * also takes frames an error destroyed (DS21801 10.3: the mode receives
+ * "all messages (including messages with errors)" through RXM), loaded
+ * like valid ones with nothing to tell them apart, and the sender's
+ * retry then arrives as a second copy.  So there "any" becomes what takes
+ * every valid frame: RXM 00, the buffer's mask 0 and, as a filter only
+ * takes the format its EXIDE names, standard and extended filters.  The
+ * buffer's own filters did not count under "any" anyway.
+ */
+static void filters_for_chip(const struct mcp2510_chip *chip,
+			     struct mcp2510_filters *f)
+{
+	static const u8 first[MCP2510_RXB_COUNT] = { 0, 2 };
+	static const u8 last[MCP2510_RXB_COUNT] = { 1, 5 };
+	unsigned int n, i;
+
+	*f = chip->filters;
+	if (chip->opmode != MCP2510_MODE_LISTEN_ONLY)
+		return;
+	for (n = 0; n < MCP2510_RXB_COUNT; n++) {
+		if (f->rxm[n] != MCP2510_RXM_ANY)
+			continue;
+		f->rxm[n] = MCP2510_RXM_FILTERED;
+		f->mask[n].id = 0;
+		f->mask[n].ext = false;
+		for (i = first[n]; i <= last[n]; i++) {
+			f->filter[i].id = 0;
+			f->filter[i].ext = i & 1;
+		}
+	}
+}
+
+/*
  * Filters 0-2 sit at 0x00-0x0b and 3-5 at 0x10-0x1b, the masks at
  * 0x20-0x27: three sequential WRITEs, plus one BIT MODIFY per RXBnCTRL.
  * Configuration mode only: the chip ignores these writes otherwise.
  */
 int mcp2510_filters_write(struct mcp2510_chip *chip)
 {
-	const struct mcp2510_filters *f = &chip->filters;
+	struct mcp2510_filters chip_filters;
+	const struct mcp2510_filters *f = &chip_filters;
 	u8 regs[3 * MCP2510_ID_LEN];
 	unsigned int bank, i;
 	u8 ctrl0;
 	int err;
+
+	filters_for_chip(chip, &chip_filters);
 
 	for (bank = 0; bank < 2; bank++) {
 		for (i = 0; i < 3; i++)

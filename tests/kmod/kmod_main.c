@@ -48,6 +48,10 @@ static bool gpio_controller;
 module_param(gpio_controller, bool, 0444);
 MODULE_PARM_DESC(gpio_controller, "give the SPI devices gpio-controller (default no)");
 
+static unsigned int seed = SIM_DEFAULT_SEED;
+module_param(seed, uint, 0444);
+MODULE_PARM_DESC(seed, "power-up garbage in the chips' buffers, filters and masks: chip n uses seed + n (default fixed)");
+
 struct chip_variant {
 	const char *name;
 	enum sim_variant model;
@@ -123,7 +127,8 @@ static int build_bus(struct mcp2510_sim *sim, const struct chip_variant *v)
 		chip->index = n;
 		chip->powered = true;
 		chip->rts = BIT(MCP2510_TXB_COUNT) - 1;
-		ret = sim_chip_init(&chip->model, v->model, osc_hz);
+		ret = sim_chip_init_seeded(&chip->model, v->model, osc_hz,
+					   seed + n);
 		if (ret) {
 			pr_err("osc_hz=%u: rejected by the model\n", osc_hz);
 			return ret;

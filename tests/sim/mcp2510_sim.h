@@ -47,6 +47,8 @@
 #define SIM_MAX_NODES			8
 #define SIM_PHANTOM_QUEUE		16
 #define SIM_STARTUP_CYCLES		128
+/* the seed of sim_chip_init(): any value will do */
+#define SIM_DEFAULT_SEED		0x6d2b79f5u
 /* a bus record's sender when the phantom node sent the frame */
 #define SIM_NODE_PHANTOM		(-1)
 
@@ -170,6 +172,15 @@ struct sim_chip_faults {
 	 * set; true: it can, in any order.
 	 */
 	bool errif_clearable_with_overflow;
+	/*
+	 * Another reading: the register legends give only the value at
+	 * power-on, where the buffers, filters and masks are "x"
+	 * (unknown), and say of RESET no more than that it restores "the
+	 * default state".  false (the default, the harsher reading): RESET
+	 * leaves new garbage in them, as power-on does.  true: RESET
+	 * leaves them as they were.
+	 */
+	bool reset_keeps_unknown;
 };
 
 /*
@@ -222,6 +233,7 @@ struct sim_chip {
 	void *pin_ctx;
 	struct sim_chip_faults faults;
 	struct sim_counters counters;
+	u32 unknown_state;		/* generator of the power-up garbage */
 };
 
 /*
@@ -301,6 +313,14 @@ struct sim_bus_faults *sim_bus_faults(struct sim_bus *bus);
  * instruction to reset an attached chip).
  */
 int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz);
+/*
+ * The same with the seed of the garbage the registers marked "x" (transmit
+ * and receive buffers, filters, masks) hold after power-on and RESET.
+ * Every seed gives its own fixed garbage, so runs repeat; give every chip
+ * of a bus its own.  sim_chip_init() uses SIM_DEFAULT_SEED.
+ */
+int sim_chip_init_seeded(struct sim_chip *chip, enum sim_variant variant,
+			 u32 osc_hz, u32 seed);
 /* One chip-select-low period: len bytes out on MOSI (tx), in on MISO (rx, may be NULL). */
 void sim_chip_spi(struct sim_chip *chip, const u8 *tx, u8 *rx, size_t len);
 bool sim_chip_pin(const struct sim_chip *chip, enum sim_pin pin);

@@ -464,14 +464,16 @@ static void sim_bus_end_receivers(struct sim_bus *bus, bool valid)
 
 	for (i = 0; i < bus->nchips; i++) {
 		struct sim_chip *chip = bus->chips[i];
+		bool heard;
 
 		if (!(bus->cur_listeners & (1U << i)) || !sim_chip_listening(chip))
 			continue;
 		sim_chip_timing(chip, &rx);
-		if (valid && sim_timings_match(&rx, &bus->cur_tm))
+		heard = sim_timings_match(&rx, &bus->cur_tm);
+		if (valid && heard)
 			sim_chip_rx_ok(chip, &bus->cur.frame);
 		else
-			sim_chip_rx_error(chip);
+			sim_chip_rx_error(chip, heard ? &bus->cur.frame : NULL);
 	}
 }
 

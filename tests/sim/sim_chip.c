@@ -21,6 +21,8 @@
 #define SIM_MASK_SIDL_MASK	0xe3	/* SID2..0, EID17..16 */
 #define SIM_TXB_SIDL_MASK	0xeb
 #define SIM_TXB_DLC_MASK	(MCP2510_DLC_RTR | MCP2510_DLC_MASK)
+#define SIM_RXB_SIDL_MASK	0xfb	/* bit 2 unimplemented */
+#define SIM_RXB_DLC_MASK	0x7f	/* bit 7 unimplemented */
 #define SIM_TXBCTRL_WMASK	(MCP2510_TXBCTRL_TXREQ | MCP2510_TXBCTRL_TXP_MASK)
 #define SIM_TXBCTRL_FLAGS	(MCP2510_TXBCTRL_ABTF | MCP2510_TXBCTRL_MLOA | \
 				 MCP2510_TXBCTRL_TXERR)
@@ -259,8 +261,12 @@ static void sim_chip_enter_mode(struct sim_chip *chip, unsigned int mode)
 {
 	chip->opmode = mode;
 	chip->mode_pending = false;
-	/* DS21801 10.1: entering configuration mode clears the error counters */
-	if (mode == MCP2510_MODE_CONFIG)
+	/*
+	 * DS21801 10.1: entering configuration mode clears the error
+	 * counters.  DS21801 10.3: in listen-only mode they are reset and
+	 * deactivated (rx_ok and rx_error count nothing there).
+	 */
+	if (mode == MCP2510_MODE_CONFIG || mode == MCP2510_MODE_LISTEN_ONLY)
 		sim_chip_clear_counters(chip);
 }
 
@@ -663,9 +669,13 @@ static bool sim_filter_match(const struct sim_chip *chip, unsigned int f,
 	return !((frame ^ fbits) & mbits);
 }
 
-/* DS21801 4.2: RXM selects which frames a buffer takes. */
+/*
+ * DS21801 4.2: RXM selects which frames a buffer takes; RXM 00..10 only
+ * valid ones.  A frame destroyed by an error (!valid) only reaches a
+ * buffer with RXM 11.
+ */
 static int sim_rxb_accept(const struct sim_chip *chip, unsigned int n,
-			  const struct can_frame *cf)
+			  const struct can_frame *cf, bool valid)
 {
 	u8 rxm = FIELD_GET(MCP2510_RXBCTRL_RXM_MASK,
 			   chip->regs[MCP2510_REG_RXBCTRL(n)]);
@@ -674,6 +684,8 @@ static int sim_rxb_accept(const struct sim_chip *chip, unsigned int n,
 
 	if (rxm == MCP2510_RXM_ANY)
 		return first;
+	if (!valid)
+		return -1;
 	if ((rxm == MCP2510_RXM_STD && ext) || (rxm == MCP2510_RXM_EXT && !ext))
 		return -1;
 	for (f = first; f <= last; f++)
@@ -736,14 +748,16 @@ static void sim_rx_overflow(struct sim_chip *chip, unsigned int n)
 }
 
 /*
- * The message assembly buffer holds a valid frame.  AN739: RXB0's mask
- * and filters first, and a frame RXB0 takes never reaches RXB1's filters;
- * a full RXB0 passes it on only with BUKT (FILHIT 0/1 in RXB1).  A full
- * buffer is never overwritten: RXnIF locks it and RXnOVR records the loss.
+ * The message assembly buffer holds a frame, valid or (listen-only mode)
+ * destroyed by an error.  AN739: RXB0's mask and filters first, and a
+ * frame RXB0 takes never reaches RXB1's filters; a full RXB0 passes it on
+ * only with BUKT (FILHIT 0/1 in RXB1).  A full buffer is never
+ * overwritten: RXnIF locks it and RXnOVR records the loss.
  */
-static void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf)
+static void sim_chip_take(struct sim_chip *chip, const struct can_frame *cf,
+			  bool valid)
 {
-	int f = sim_rxb_accept(chip, 0, cf);
+	int f = sim_rxb_accept(chip, 0, cf, valid);
 
 	if (f >= 0) {
 		if (!sim_rxb_full(chip, 0))
@@ -756,13 +770,18 @@ static void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf)
 			sim_rx_overflow(chip, 1);
 		return;
 	}
-	f = sim_rxb_accept(chip, 1, cf);
+	f = sim_rxb_accept(chip, 1, cf, valid);
 	if (f < 0)
 		return;
 	if (sim_rxb_full(chip, 1))
 		sim_rx_overflow(chip, 1);
 	else
 		sim_rxb_load(chip, 1, cf, f, false);
+}
+
+static void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf)
+{
+	sim_chip_take(chip, cf, true);
 }
 
 /* A frame arrived without error (CAN 2.0B rule 8 for REC). */
@@ -779,14 +798,26 @@ void sim_chip_rx_ok(struct sim_chip *chip, const struct can_frame *cf)
 	sim_chip_update_pins(chip);
 }
 
-/* This chip detected an error as a receiver (rule 1: REC + 1). */
-void sim_chip_rx_error(struct sim_chip *chip)
+/*
+ * This chip detected an error as a receiver (rule 1: REC + 1).  heard is
+ * the frame the error destroyed when this chip could follow it (same bit
+ * rate), else NULL.
+ *
+ * DS21801 10.3 (AN739 "Listen-only Mode" likewise): listen-only mode
+ * receives "all messages (including messages with errors)" by setting
+ * RXM to 11.  What the buffer then holds is not said; the model takes
+ * the reading hardest on a driver: the frame as sent, loaded like a valid
+ * one, nothing in the buffer telling it apart (MERRF is the only trace).
+ */
+void sim_chip_rx_error(struct sim_chip *chip, const struct can_frame *heard)
 {
 	*sim_reg(chip, MCP2510_REG_CANINTF) |= MCP2510_INT_MERR;
 	chip->counters.rx_errors++;
-	/* listen-only mode sends no error flags and keeps its counters */
+	/* listen-only mode sends no error flags, its counters are inactive */
 	if (chip->opmode == MCP2510_MODE_NORMAL && chip->rec < 255)
 		chip->rec++;
+	if (chip->opmode == MCP2510_MODE_LISTEN_ONLY && heard)
+		sim_chip_take(chip, heard, false);
 	sim_chip_update_eflg(chip);
 	sim_chip_update_pins(chip);
 }
@@ -1111,11 +1142,66 @@ static u8 sim_rx_status(const struct sim_chip *chip)
 	return s;
 }
 
-static void sim_chip_reset(struct sim_chip *chip)
+/*
+ * Bits the register legends mark "x", unknown at power-on (DS21801 and
+ * DS21291 registers 3-3..3-8, 4-4..4-9 and the filter and mask registers
+ * 4-10..4-17): SIDH..D7 of the transmit and receive buffers, the filters
+ * and the masks.  Their unimplemented bits read 0.  Everything else
+ * powers up as a number ("R/W-0" and the like).
+ */
+static u8 sim_unknown_mask(unsigned int addr)
 {
-	unsigned int n;
+	unsigned int off = addr & 0x0f;
+	bool rx = addr >= MCP2510_REG_RXB(0);
 
-	memset(chip->regs, 0, sizeof(chip->regs));
+	if (addr < MCP2510_REG_RXM(0) + 2 * MCP2510_ID_LEN) {
+		if (off >= 3 * MCP2510_ID_LEN)
+			return 0;	/* control registers at 0xXc..0xXf */
+		if ((addr & 3) != MCP2510_ID_SIDL)
+			return 0xff;
+		return addr >= MCP2510_REG_RXM(0) ? SIM_MASK_SIDL_MASK :
+		       SIM_FILTER_SIDL_MASK;
+	}
+	if (addr < MCP2510_REG_TXB(0) || off < MCP2510_BUF_SIDH ||
+	    off >= MCP2510_BUF_LEN)
+		return 0;
+	if (off == MCP2510_BUF_SIDL)
+		return rx ? SIM_RXB_SIDL_MASK : SIM_TXB_SIDL_MASK;
+	if (off == MCP2510_BUF_DLC)
+		return rx ? SIM_RXB_DLC_MASK : SIM_TXB_DLC_MASK;
+	return 0xff;
+}
+
+/* A Weyl sequence through a 32-bit finaliser: every seed, even 0, is fine. */
+static u8 sim_unknown_byte(struct sim_chip *chip)
+{
+	u32 z;
+
+	chip->unknown_state += 0x9e3779b9u;
+	z = chip->unknown_state;
+	z = (z ^ (z >> 16)) * 0x85ebca6bu;
+	z = (z ^ (z >> 13)) * 0xc2b2ae35u;
+	return (z ^ (z >> 16)) >> 24;
+}
+
+/*
+ * Power-on (power_on) or RESET.  The "x" registers get new garbage, or
+ * with faults.reset_keeps_unknown keep theirs through a RESET; all other
+ * registers take their reset values.
+ */
+static void sim_chip_reset(struct sim_chip *chip, bool power_on)
+{
+	bool keep = !power_on && chip->faults.reset_keeps_unknown;
+	unsigned int n, addr;
+
+	for (addr = 0; addr < MCP2510_REG_COUNT; addr++) {
+		u8 mask = sim_unknown_mask(addr);
+
+		if (mask && !keep)
+			chip->regs[addr] = sim_unknown_byte(chip) & mask;
+		else
+			chip->regs[addr] &= mask;
+	}
 	chip->regs[MCP2510_REG_CANCTRL] = chip->variant == SIM_MCP2515 ?
 					  MCP2515_RESET_CANCTRL :
 					  MCP2510_RESET_CANCTRL;
@@ -1168,7 +1254,7 @@ static bool sim_spi_execute(struct sim_chip *chip, const u8 *tx, u8 *rx,
 
 	switch (instr) {
 	case MCP2510_INSTR_RESET:
-		sim_chip_reset(chip);
+		sim_chip_reset(chip, false);
 		return true;
 	case MCP2510_INSTR_READ:
 		if (len > 2)
@@ -1276,6 +1362,12 @@ void sim_chip_spi(struct sim_chip *chip, const u8 *tx, u8 *rx, size_t len)
 
 int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz)
 {
+	return sim_chip_init_seeded(chip, variant, osc_hz, SIM_DEFAULT_SEED);
+}
+
+int sim_chip_init_seeded(struct sim_chip *chip, enum sim_variant variant,
+			 u32 osc_hz, u32 seed)
+{
 	unsigned int i;
 
 	if ((variant != SIM_MCP2510 && variant != SIM_MCP2515) ||
@@ -1290,7 +1382,8 @@ int sim_chip_init(struct sim_chip *chip, enum sim_variant variant, u32 osc_hz)
 		chip->rts_level[i] = true;
 	for (i = 0; i < SIM_PIN_COUNT; i++)
 		chip->pin_level[i] = true;
-	sim_chip_reset(chip);
+	chip->unknown_state = seed;
+	sim_chip_reset(chip, true);
 	return 0;
 }
 
@@ -1300,7 +1393,7 @@ void sim_chip_power(struct sim_chip *chip, bool on)
 		return;
 	chip->powered = on;
 	if (on)
-		sim_chip_reset(chip);
+		sim_chip_reset(chip, true);
 	else
 		memset(&chip->tx, 0, sizeof(chip->tx));
 	sim_chip_update_pins(chip);
@@ -1310,7 +1403,7 @@ void sim_chip_reset_pin(struct sim_chip *chip)
 {
 	if (!chip->powered)
 		return;
-	sim_chip_reset(chip);
+	sim_chip_reset(chip, false);
 	sim_chip_update_pins(chip);
 }
 

@@ -68,7 +68,7 @@ bool sim_chip_sending(const struct sim_chip *chip);
 void sim_chip_tx_lost(struct sim_chip *chip);
 void sim_chip_tx_end(struct sim_chip *chip, bool ok, bool count_error);
 void sim_chip_rx_ok(struct sim_chip *chip, const struct can_frame *cf);
-void sim_chip_rx_error(struct sim_chip *chip);
+void sim_chip_rx_error(struct sim_chip *chip, const struct can_frame *heard);
 void sim_chip_bus_activity(struct sim_chip *chip);
 u64 sim_chip_next_event(const struct sim_chip *chip);
 void sim_chip_run_events(struct sim_chip *chip);

@@ -177,7 +177,9 @@ struct ch_rig *ch_rig_new(unsigned int n, enum mcp2510_model model)
 
 		node->rig = rig;
 		node->miso_stuck = -1;
-		assert_int_equal(sim_chip_init(&node->sim, sv, CH_OSC_HZ), 0);
+		/* every node its own power-up garbage, the same on every run */
+		assert_int_equal(sim_chip_init_seeded(&node->sim, sv, CH_OSC_HZ,
+						      CH_SEED_BASE + i), 0);
 		assert_int_equal(sim_bus_attach(&rig->bus, &node->sim), 0);
 		assert_int_equal(mcp2510_init(&node->core,
 					      mcp2510_variant_get(model),

@@ -15,6 +15,8 @@
 #define CH_MAX_NODES	3
 #define CH_LOG_MAX	64
 #define CH_OSC_HZ	16000000U
+/* power-up garbage of node i: sim_chip_init_seeded(..., CH_SEED_BASE + i) */
+#define CH_SEED_BASE	0x5eed0000U
 
 struct ch_node;
 

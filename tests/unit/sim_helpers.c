@@ -159,7 +159,8 @@ void simh_read_rx(struct sim_chip *chip, unsigned int n, struct can_frame *cf,
 void simh_node_setup(struct sim_bus *bus, struct sim_chip *chip,
 		     enum sim_variant variant, u8 cnf1, u8 cnf2, u8 cnf3)
 {
-	sim_chip_init(chip, variant, SIMH_OSC_16MHZ);
+	/* its own power-up garbage: the seed is the node's index */
+	sim_chip_init_seeded(chip, variant, SIMH_OSC_16MHZ, bus->nchips);
 	sim_bus_attach(bus, chip);
 	sim_bus_advance(bus, sim_chip_startup_ns(chip));
 	simh_reset(chip);

@@ -81,6 +81,43 @@ static void test_reset_finds_the_chip(void **state)
 	}
 }
 
+/*
+ * Start and restart on chips whose buffers, filters and masks hold
+ * garbage (unknown at power-on, DS21801 register legends "x"), under both
+ * readings of what RESET leaves there.  The core checks only registers
+ * with a reset value (CANSTAT, CANCTRL), and the one transmit buffer
+ * state it keeps across the reset, each buffer's TXP, matches the chip's
+ * TXBnCTRL (R/W-0 at reset); the receive modes are programmed.
+ */
+static void test_start_with_power_up_garbage(void **state)
+{
+	unsigned int round, n;
+
+	(void)state;
+	for (round = 0; round < 4; round++) {
+		struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2515);
+		struct ch_node *node = &rig->node[0];
+
+		for (n = 0; n < round; n++) {
+			sim_chip_power(&node->sim, false);
+			sim_chip_power(&node->sim, true);
+		}
+		sim_chip_faults(&node->sim)->reset_keeps_unknown = round & 1;
+		assert_int_equal(ch_start(node, 500000, 0), 0);
+		assert_int_equal(mcp2510_restart(&node->core), 0);
+		assert_int_equal(opmode(node), MCP2510_MODE_NORMAL);
+		for (n = 0; n < MCP2510_TXB_COUNT; n++)
+			assert_int_equal(sim_chip_peek(&node->sim,
+						       MCP2510_REG_TXBCTRL(n)),
+					 FIELD_PREP(MCP2510_TXBCTRL_TXP_MASK,
+						    node->core.tx.prio[n]));
+		assert_int_equal(sim_chip_peek(&node->sim, MCP2510_REG_RXBCTRL(0)) &
+				 MCP2510_RXBCTRL_RXM_MASK, 0);
+		assert_int_equal(sim_chip_peek(&node->sim, MCP2510_REG_CANINTF), 0);
+		ch_rig_free(rig);
+	}
+}
+
 /* A reset must wait the oscillator start-up, but not for ages. */
 static void test_reset_wait_is_short(void **state)
 {
@@ -421,6 +458,7 @@ int main(void)
 		cmocka_unit_test(test_variant_table),
 		cmocka_unit_test(test_init_checks_its_arguments),
 		cmocka_unit_test(test_reset_finds_the_chip),
+		cmocka_unit_test(test_start_with_power_up_garbage),
 		cmocka_unit_test(test_reset_wait_is_short),
 		cmocka_unit_test(test_reset_waits_for_a_slow_oscillator),
 		cmocka_unit_test(test_missing_chip_is_enodev),

@@ -288,6 +288,113 @@ static void test_receive_modes(void **state)
 	ch_rig_free(rig);
 }
 
+/* Every filter and mask byte holds what the core's filters encode to. */
+static void assert_filters_programmed(struct ch_node *node)
+{
+	const struct mcp2510_filters *f = &node->core.filters;
+	u8 want[MCP2510_ID_LEN];
+	unsigned int i, k;
+
+	for (i = 0; i < MCP2510_FILTER_COUNT; i++) {
+		mcp2510_filter_id_encode(&f->filter[i], false, want);
+		for (k = 0; k < MCP2510_ID_LEN; k++)
+			assert_int_equal(sim_chip_peek(&node->sim,
+						       MCP2510_REG_RXF(i) + k),
+					 want[k]);
+	}
+	for (i = 0; i < MCP2510_MASK_COUNT; i++) {
+		mcp2510_filter_id_encode(&f->mask[i], true, want);
+		for (k = 0; k < MCP2510_ID_LEN; k++)
+			assert_int_equal(sim_chip_peek(&node->sim,
+						       MCP2510_REG_RXM(i) + k),
+					 want[k]);
+	}
+}
+
+/*
+ * The filters and masks power up unknown (DS21801 registers 4-10..4-17,
+ * "x") and the model fills them with garbage, new at every power-up and,
+ * by default, at every RESET.  The core writes every byte of them, so
+ * whatever they held, the default configuration takes every frame; also
+ * under the reading where RESET keeps what power-up left.
+ */
+static void test_filters_do_not_rely_on_reset_values(void **state)
+{
+	unsigned int round;
+
+	(void)state;
+	for (round = 0; round < 8; round++) {
+		struct ch_rig *rig = ch_rig_new(2, MCP2510_MODEL_MCP2515);
+		bool got[ARRAY_SIZE(mixed_ids)];
+		unsigned int k;
+
+		/* other garbage each round: power-cycle node 0 a few times */
+		for (k = 0; k < round; k++) {
+			sim_chip_power(&rig->node[0].sim, false);
+			sim_chip_power(&rig->node[0].sim, true);
+		}
+		sim_chip_faults(&rig->node[0].sim)->reset_keeps_unknown = round & 1;
+		assert_int_equal(ch_start(&rig->node[0], 500000, 0), 0);
+		assert_int_equal(ch_start(&rig->node[1], 500000, 0), 0);
+		assert_filters_programmed(&rig->node[0]);
+		assert_int_equal(deliver(rig, mixed_ids, ARRAY_SIZE(mixed_ids),
+					 got), ARRAY_SIZE(mixed_ids));
+		/* a restart resets the chip: everything is written again */
+		assert_int_equal(mcp2510_restart(&rig->node[0].core), 0);
+		assert_filters_programmed(&rig->node[0]);
+		assert_int_equal(deliver(rig, mixed_ids, ARRAY_SIZE(mixed_ids),
+					 got), ARRAY_SIZE(mixed_ids));
+		ch_rig_free(rig);
+	}
+}
+
+/*
+ * Listen-only mode (DS21801 10.3): a buffer with RXM 11 also takes frames
+ * that an error destroyed, loaded like valid ones.  Node 1's first frame
+ * is destroyed (an injected CRC error) and sent again: a listen-only node
+ * must report it once, whatever receive modes were chosen.  With the
+ * default filters (RXM 00) the chip never takes the destroyed copy; with
+ * "any" the core must not let it either.
+ */
+static void check_listen_only_takes_valid_frames_only(u8 rxm0, u8 rxm1)
+{
+	struct ch_rig *rig = ch_rig_new(3, MCP2510_MODEL_MCP2515);
+	struct ch_node *lom = &rig->node[0];
+	struct can_frame cf = ch_frame(0x2a5, 4, 1);
+	struct mcp2510_filters f;
+
+	mcp2510_filters_default(&f);
+	f.rxm[0] = rxm0;
+	f.rxm[1] = rxm1;
+	assert_int_equal(mcp2510_filters_apply(&lom->core, &f), 0);
+	assert_int_equal(ch_start(lom, 500000, CAN_CTRLMODE_LISTENONLY), 0);
+	/* node 2 acknowledges, node 1 sends */
+	assert_int_equal(ch_start(&rig->node[1], 500000, 0), 0);
+	assert_int_equal(ch_start(&rig->node[2], 500000, 0), 0);
+	sim_bus_faults(&rig->bus)->bus_errors = 1;
+	assert_true(mcp2510_tx_submit(&rig->node[1].core, &cf) >= 0);
+	ch_run_idle(rig, 10 * MS);
+	assert_int_equal(rig->node[2].ev.rx_count, 1);
+	assert_int_equal(lom->ev.rx_count, 1);
+	assert_true(ch_frame_equal(&lom->ev.rx[0], &cf));
+	/* and every frame still arrives, standard or extended */
+	assert_int_equal(deliver(rig, mixed_ids, ARRAY_SIZE(mixed_ids),
+				 (bool[ARRAY_SIZE(mixed_ids)]){ 0 }),
+			 ARRAY_SIZE(mixed_ids));
+	ch_rig_free(rig);
+}
+
+static void test_listen_only_takes_valid_frames_only(void **state)
+{
+	(void)state;
+	check_listen_only_takes_valid_frames_only(MCP2510_RXM_FILTERED,
+						  MCP2510_RXM_FILTERED);
+	check_listen_only_takes_valid_frames_only(MCP2510_RXM_ANY,
+						  MCP2510_RXM_ANY);
+	check_listen_only_takes_valid_frames_only(MCP2510_RXM_STD,
+						  MCP2510_RXM_ANY);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -300,6 +407,8 @@ int main(void)
 		cmocka_unit_test(test_default_accepts_everything),
 		cmocka_unit_test(test_an739_example),
 		cmocka_unit_test(test_receive_modes),
+		cmocka_unit_test(test_filters_do_not_rely_on_reset_values),
+		cmocka_unit_test(test_listen_only_takes_valid_frames_only),
 	};
 
 	return cmocka_run_group_tests_name("core_filter", tests, NULL, NULL);

@@ -518,6 +518,107 @@ static void test_receive_error_counter(void **state)
 }
 
 /*
+ * DS21801 10.3 / DS21291 "Listen-only Mode": the error counters are reset
+ * and inactive in this mode.  Entering it clears REC and the warning
+ * flags; errors there count nothing; normal mode starts again from 0.
+ */
+static void test_listen_only_resets_counters(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x321, 0, NULL);
+	unsigned int i;
+
+	sim_bus_faults(&r->bus)->bus_errors = 100;
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 0), 0);
+	for (i = 0; i < 100; i++)
+		next_frame(r);
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 99);
+	assert_true(simh_read(&r->a, MCP2510_REG_EFLG) & MCP2510_EFLG_RXWAR);
+
+	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_LISTEN_ONLY), 0);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 0);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_TEC), 0);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG), 0);
+	simh_bit_modify(&r->a, MCP2510_REG_CANINTF, 0xff, 0);
+	sim_bus_faults(&r->bus)->bus_errors = 10;
+	assert_int_equal(sim_phantom_send(&r->bus, &cf, 0), 0);
+	for (i = 0; i < 10; i++)
+		assert_int_equal(next_frame(r)->cause, SIM_ERR_INJECTED);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 0);
+	/*
+	 * It saw them (MERRF), no error state changed.  (With RXM 11 it
+	 * also took the destroyed frames: RXB0 overflowed, see below.)
+	 */
+	assert_true(simh_read(&r->a, MCP2510_REG_CANINTF) & MCP2510_INT_MERR);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_EFLG) &
+			 ~(MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR), 0);
+	next_frame(r);		/* the good one */
+	assert_int_equal(simh_set_mode(&r->a, MCP2510_MODE_NORMAL), 0);
+	assert_int_equal(simh_read(&r->a, MCP2510_REG_REC), 0);
+}
+
+/*
+ * DS21801 10.3, AN739 "Listen-only Mode": with RXM = 11 a listen-only
+ * chip receives all messages "including those with errors".  The data
+ * sheets do not say what the buffer then holds; the model takes the
+ * reading hardest on a driver: the frame as it was sent, loaded like a
+ * valid one (RXnIF, FILHIT, RX STATUS), nothing in the buffer telling it
+ * apart.  Only MERRF says an error was seen.  The sender retries, so the
+ * listener holds the same frame twice.  RXM 00..10 take valid frames
+ * only, and a normal-mode chip never takes a destroyed frame.
+ */
+static void test_listen_only_receives_erroneous_frames(void **state)
+{
+	struct rig *r = *state;
+	struct can_frame cf = simh_frame(0x2a5, 2, (const u8[]){ 1, 2 }), got;
+
+	/* b listens with RXM 11 (set up by accept_all), a sends */
+	assert_int_equal(simh_set_mode(&r->b, MCP2510_MODE_LISTEN_ONLY), 0);
+	sim_phantom_attach(&r->bus, 0);		/* someone acknowledges */
+	sim_bus_faults(&r->bus)->bus_errors = 1;
+	simh_send(&r->a, 0, &cf);
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_INJECTED);
+	assert_int_equal(simh_read(&r->b, MCP2510_REG_CANINTF) &
+			 (MCP2510_INT_RX0 | MCP2510_INT_MERR),
+			 MCP2510_INT_RX0 | MCP2510_INT_MERR);
+	simh_read_rx(&r->b, 0, &got, true);
+	assert_true(simh_frame_equal(&cf, &got));
+	/* the retry, good this time: the same frame again */
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	simh_read_rx(&r->b, 0, &got, true);
+	assert_true(simh_frame_equal(&cf, &got));
+	assert_int_equal(sim_chip_counters(&r->b)->frames_rx, 2);
+
+	/* with the filters on, only the valid frame arrives */
+	assert_int_equal(simh_set_mode(&r->b, MCP2510_MODE_CONFIG), 0);
+	simh_write(&r->b, MCP2510_REG_RXMSIDH(0), 0);
+	simh_write(&r->b, MCP2510_REG_RXMSIDL(0), 0);
+	simh_write(&r->b, MCP2510_REG_RXFSIDL(0), 0);
+	simh_write(&r->b, MCP2510_REG_RXBCTRL(0), 0);
+	assert_int_equal(simh_set_mode(&r->b, MCP2510_MODE_LISTEN_ONLY), 0);
+	sim_bus_faults(&r->bus)->bus_errors = 1;
+	simh_send(&r->a, 0, &cf);
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_INJECTED);
+	assert_false(simh_read(&r->b, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
+	assert_int_equal(next_frame(r)->kind, SIM_REC_FRAME);
+	assert_true(simh_read(&r->b, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
+	assert_int_equal(sim_chip_counters(&r->b)->frames_rx, 3);
+
+	/* in normal mode RXM 11 still takes only what survived */
+	simh_bit_modify(&r->b, MCP2510_REG_CANINTF, 0xff, 0);
+	assert_int_equal(simh_set_mode(&r->b, MCP2510_MODE_CONFIG), 0);
+	accept_all(&r->b);
+	assert_int_equal(simh_set_mode(&r->b, MCP2510_MODE_NORMAL), 0);
+	sim_bus_faults(&r->bus)->bus_errors = 1;
+	simh_send(&r->a, 0, &cf);
+	assert_int_equal(next_frame(r)->cause, SIM_ERR_INJECTED);
+	assert_false(simh_read(&r->b, MCP2510_REG_CANINTF) & MCP2510_INT_RX0);
+	next_frame(r);
+	assert_int_equal(sim_chip_counters(&r->b)->frames_rx, 4);
+}
+
+/*
  * Missing ACK with a receiver present (fault "no_ack").  While the
  * sender is error active its error flag destroys the frame for everyone;
  * once passive its flag is recessive, the receiver takes the frame and
@@ -589,6 +690,8 @@ int main(void)
 		cmocka_unit_test(test_invalid_bit_timing),
 		cmocka_unit_test(test_bit_rate_tolerance_from_timing),
 		cmocka_unit_test_setup_teardown(test_receive_error_counter, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_listen_only_resets_counters, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_listen_only_receives_erroneous_frames, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_missing_ack, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_sender_reset_mid_frame, setup_two, simh_teardown),
 	};

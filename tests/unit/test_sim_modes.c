@@ -324,6 +324,7 @@ static void check_data_byte_filter(struct rig *r, bool expect_filtering)
 	simh_write(&r->a, MCP2510_REG_RXMSIDH(0), 0xff);
 	simh_write(&r->a, MCP2510_REG_RXMSIDL(0), 0xe0);
 	simh_write(&r->a, MCP2510_REG_RXMEID8(0), 0xff);	/* data byte 0 */
+	simh_write(&r->a, MCP2510_REG_RXMEID0(0), 0);	/* powered up unknown */
 	simh_write(&r->a, MCP2510_REG_RXFSIDH(0), 0x24);	/* id 0x123 */
 	simh_write(&r->a, MCP2510_REG_RXFSIDL(0), 0x60);
 	simh_write(&r->a, MCP2510_REG_RXFEID8(0), 0x55);

@@ -78,6 +78,115 @@ static void test_reset_values(void **state)
 	assert_int_equal(sim_chip_init(&chip, SIM_MCP2510, 0), -EINVAL);
 }
 
+/* bytes of the register file that hold something other than 0 */
+static unsigned int nonzero_bytes(const u8 *regs, unsigned int from,
+				  unsigned int to)
+{
+	unsigned int n = 0;
+
+	for (; from < to; from++)
+		n += regs[from] != 0;
+	return n;
+}
+
+/*
+ * DS21801 / DS21291 register legends: the transmit buffers' SIDH..D7
+ * ("R/W-x"), the receive buffers ("R-x"), the filters and the masks are
+ * unknown at power-on, so the model fills them with garbage; their
+ * unimplemented bits still read 0, and every control register has its
+ * number.
+ */
+static void test_unknown_at_power_on(void **state)
+{
+	static const enum sim_variant variants[] = { SIM_MCP2510, SIM_MCP2515 };
+	struct sim_chip chip;
+	struct sim_bus bus;
+	u8 regs[MCP2510_REG_COUNT];
+	unsigned int v, n;
+
+	(void)state;
+	for (v = 0; v < ARRAY_SIZE(variants); v++) {
+		sim_bus_init(&bus);
+		assert_int_equal(sim_chip_init(&chip, variants[v], SIMH_OSC_16MHZ), 0);
+		assert_int_equal(sim_bus_attach(&bus, &chip), 0);
+		sim_bus_advance(&bus, sim_chip_startup_ns(&chip));
+		simh_read_seq(&chip, 0, regs, sizeof(regs));
+
+		/* filters 0-2, 3-5 and the masks: 36 bytes, nearly all set */
+		assert_true(nonzero_bytes(regs, 0x00, 0x0c) > 6);
+		assert_true(nonzero_bytes(regs, 0x10, 0x1c) > 6);
+		assert_true(nonzero_bytes(regs, 0x20, 0x28) > 4);
+		for (n = 0; n < MCP2510_TXB_COUNT; n++) {
+			u8 b = MCP2510_REG_TXB(n);
+
+			assert_true(nonzero_bytes(regs, b + MCP2510_BUF_SIDH,
+						  b + MCP2510_BUF_LEN) > 6);
+			assert_int_equal(regs[b + MCP2510_BUF_CTRL], 0);
+			assert_int_equal(regs[b + MCP2510_BUF_SIDL] & 0x14, 0);
+			assert_int_equal(regs[b + MCP2510_BUF_DLC] & 0xb0, 0);
+		}
+		for (n = 0; n < MCP2510_RXB_COUNT; n++) {
+			u8 b = MCP2510_REG_RXB(n);
+
+			assert_true(nonzero_bytes(regs, b + MCP2510_BUF_SIDH,
+						  b + MCP2510_BUF_LEN) > 6);
+			assert_int_equal(regs[b + MCP2510_BUF_CTRL], 0);
+			assert_int_equal(regs[b + MCP2510_BUF_SIDL] & 0x04, 0);
+			assert_int_equal(regs[b + MCP2510_BUF_DLC] & 0x80, 0);
+		}
+		for (n = 0; n < 6; n++)
+			assert_int_equal(regs[MCP2510_REG_RXF(n) + MCP2510_ID_SIDL] & 0x14, 0);
+		for (n = 0; n < 2; n++)
+			assert_int_equal(regs[MCP2510_REG_RXM(n) + MCP2510_ID_SIDL] & 0x1c, 0);
+		/* BFPCTRL .. CANINTF, EFLG: numbers, not garbage */
+		assert_int_equal(nonzero_bytes(regs, MCP2510_REG_CNF3,
+					       MCP2510_REG_CANINTF + 1), 0);
+		assert_int_equal(regs[MCP2510_REG_EFLG], 0);
+		assert_int_equal(regs[MCP2510_REG_TEC], 0);
+		assert_int_equal(regs[MCP2510_REG_REC], 0);
+	}
+}
+
+/*
+ * The garbage follows the seed: the same seed gives the same bytes (runs
+ * repeat), another seed others.  RESET leaves new garbage by default;
+ * reset_keeps_unknown takes the reading where it leaves them alone.
+ */
+static void test_unknown_seeds(void **state)
+{
+	struct sim_chip a, b;
+	u8 ra[MCP2510_REG_COUNT], rb[MCP2510_REG_COUNT];
+
+	(void)state;
+	assert_int_equal(sim_chip_init_seeded(&a, SIM_MCP2515, SIMH_OSC_16MHZ, 1), 0);
+	assert_int_equal(sim_chip_init_seeded(&b, SIM_MCP2515, SIMH_OSC_16MHZ, 1), 0);
+	simh_read_seq(&a, 0, ra, sizeof(ra));
+	simh_read_seq(&b, 0, rb, sizeof(rb));
+	assert_memory_equal(ra, rb, sizeof(ra));
+	assert_int_equal(sim_chip_init_seeded(&b, SIM_MCP2515, SIMH_OSC_16MHZ, 2), 0);
+	simh_read_seq(&b, 0, rb, sizeof(rb));
+	assert_memory_not_equal(ra + MCP2510_REG_TXB(0), rb + MCP2510_REG_TXB(0),
+				MCP2510_BUF_LEN);
+
+	/* RESET: new garbage (no bus: no start-up time) */
+	simh_reset(&a);
+	simh_read_seq(&a, 0, rb, sizeof(rb));
+	assert_memory_not_equal(ra + MCP2510_REG_TXB(0), rb + MCP2510_REG_TXB(0),
+				MCP2510_BUF_LEN);
+	/* the other reading: RESET keeps them, power-on does not */
+	sim_chip_faults(&a)->reset_keeps_unknown = true;
+	simh_read_seq(&a, 0, ra, sizeof(ra));
+	simh_reset(&a);
+	sim_chip_reset_pin(&a);
+	simh_read_seq(&a, 0, rb, sizeof(rb));
+	assert_memory_equal(ra, rb, sizeof(ra));
+	sim_chip_power(&a, false);
+	sim_chip_power(&a, true);
+	simh_read_seq(&a, 0, rb, sizeof(rb));
+	assert_memory_not_equal(ra + MCP2510_REG_RXB(0), rb + MCP2510_REG_RXB(0),
+				MCP2510_BUF_LEN);
+}
+
 /* AN739 "Resetting the MCP2510": held in reset for 128 oscillator cycles */
 static void test_startup_after_reset(void **state)
 {
@@ -187,14 +296,15 @@ static void test_write_protection(void **state)
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_BFPCTRL), 0x3f);
 	simh_write(&r->chip, MCP2510_REG_TXBD(1, 7), 0x77);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBD(1, 7)), 0x77);
-	/* read-only registers in any mode */
+	/* read-only registers in any mode (RXB0 D0 holds its power-up garbage) */
+	before[0] = simh_read(&r->chip, MCP2510_REG_RXBD(0, 0));
 	simh_write(&r->chip, MCP2510_REG_TEC, 9);
 	simh_write(&r->chip, MCP2510_REG_REC, 9);
 	simh_write(&r->chip, MCP2510_REG_RXBD(0, 0), 9);
 	simh_write(&r->chip, MCP2510_REG_EFLG, 0xff);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TEC), 0);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_REC), 0);
-	assert_int_equal(simh_read(&r->chip, MCP2510_REG_RXBD(0, 0)), 0);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_RXBD(0, 0)), before[0]);
 	/* only RXnOVR of EFLG is writable */
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_EFLG), 0xc0);
 
@@ -285,9 +395,9 @@ static void test_mcp2515_instructions_on_mcp2510(void **state)
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_CANINTF), MCP2510_INT_RX0);
 
 	tx[0] = MCP2515_INSTR_LOAD_TX_BUFFER | MCP2515_LOAD_TXB_D0(0);
-	tx[1] = 0x42;
+	tx[1] = simh_read(&r->chip, MCP2510_REG_TXBD(0, 0)) ^ 0xff;
 	sim_chip_spi(&r->chip, tx, rx, 2);
-	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBD(0, 0)), 0);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBD(0, 0)), tx[1] ^ 0xff);
 
 	tx[0] = MCP2515_INSTR_RX_STATUS;
 	sim_chip_spi(&r->chip, tx, rx, 2);
@@ -388,13 +498,14 @@ static void test_malformed_spi(void **state)
 static void test_tx_buffer_locked(void **state)
 {
 	struct rig *r = *state;
+	u8 sidh = simh_read(&r->chip, MCP2510_REG_TXBSIDH(0));
 
 	simh_write(&r->chip, MCP2510_REG_TXBD(0, 0), 0x11);
 	simh_rts(&r->chip, MCP2510_RTS_TXB(0));
 	simh_write(&r->chip, MCP2510_REG_TXBD(0, 0), 0x22);
-	simh_write(&r->chip, MCP2510_REG_TXBSIDH(0), 0x22);
+	simh_write(&r->chip, MCP2510_REG_TXBSIDH(0), sidh ^ 0xff);
 	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBD(0, 0)), 0x11);
-	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBSIDH(0)), 0);
+	assert_int_equal(simh_read(&r->chip, MCP2510_REG_TXBSIDH(0)), sidh);
 	assert_int_equal(sim_chip_counters(&r->chip)->tx_pending_writes, 2);
 	/* the harsher reading (default): TXP is locked too */
 	simh_bit_modify(&r->chip, MCP2510_REG_TXBCTRL(0), 0x03, 0x03);
@@ -674,6 +785,8 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_reset_values),
+		cmocka_unit_test(test_unknown_at_power_on),
+		cmocka_unit_test(test_unknown_seeds),
 		cmocka_unit_test_setup_teardown(test_startup_after_reset, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_sequential_read_wraps, setup_2510, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_canstat_canctrl_mirrors, setup_2510, simh_teardown),

@@ -426,7 +426,8 @@ static int shared_bus_take_chip(struct shared_bus *sb,
 		return -ENOSPC;
 	i = sb->nchips;
 	chip = &sb->chips[i];
-	ret = sim_chip_init(chip, v, p->osc_hz);
+	/* its own power-up garbage, the same on every run: seeded by its slot */
+	ret = sim_chip_init_seeded(chip, v, p->osc_hz, SIM_DEFAULT_SEED + i);
 	if (ret)
 		return ret;
 	ret = sim_bus_attach(&sb->bus, chip);

@@ -7,6 +7,8 @@
 #   gives, ethtool -d shows the CNF1-3 it encodes, and a frame crosses the
 #   bus at each rate;
 # - listen-only: can1 receives, but never acknowledges and never sends;
+#   a frame destroyed by an error and sent again reaches it once, also
+#   with rxm0/rxm1 "any" (the chip's RXM 11 would take the destroyed copy);
 # - loopback: can0's frames come back through the chip, nothing reaches
 #   the bus;
 # - restart with frames pending: frames queued while nobody acknowledges
@@ -105,6 +107,28 @@ wait_for 10 grep -q 'chip0 323#02 .* error-ack$' "$SIM/monitor" ||
 	{ cat "$SIM/monitor"; fail "listen-only can1 acknowledged a frame"; }
 ip link set can0 down
 ip link set can1 down
+# A frame destroyed by an error, then sent again, reaches the listener
+# once: with the default filters and with "any" on both buffers.
+for rxm in filtered any; do
+	echo $rxm >/sys/class/net/can1/mcp2510/rxm0
+	echo $rxm >/sys/class/net/can1/mcp2510/rxm1
+	can_up can0 125000
+	can_up can1 125000 listen-only on
+	echo clear >"$SIM/monitor"
+	echo 1 >"$SIM/bus_errors"
+	dump_start can1 2 /tmp/lo2.txt -T 3000
+	echo 324#BEEF >"$SIM/inject"
+	dump_wait
+	echo off >"$SIM/phantom"
+	cat "$SIM/monitor"
+	grep -q 'phantom 324#BEEF .* error-' "$SIM/monitor" ||
+		fail "rxm $rxm: the phantom's first 324#BEEF was not destroyed"
+	expect_lines /tmp/lo2.txt 1
+	ip link set can0 down
+	ip link set can1 down
+done
+echo filtered >/sys/class/net/can1/mcp2510/rxm0
+echo filtered >/sys/class/net/can1/mcp2510/rxm1
 
 echo "== loopback"
 can_up can0 125000 loopback on
