@@ -159,6 +159,24 @@ void mcp2510_filter_id_encode(const struct mcp2510_filter_id *id,
 }
 
 /*
+ * The inverse, for filters someone else programmed.  A mask has no EXIDE:
+ * one with EID bits set masks extended identifiers.
+ */
+void mcp2510_filter_id_decode(const u8 regs[MCP2510_ID_LEN], bool is_mask,
+			      struct mcp2510_filter_id *id)
+{
+	u32 sid = (u32)regs[MCP2510_ID_SIDH] << MCP2510_SID_SHIFT_SIDH |
+		  (regs[MCP2510_ID_SIDL] & MCP2510_SIDL_SID_MASK) >>
+		  MCP2510_SID_SHIFT_SIDL;
+	u32 eid = (u32)(regs[MCP2510_ID_SIDL] & MCP2510_SIDL_EID_MASK) << 16 |
+		  (u32)regs[MCP2510_ID_EID8] << 8 | regs[MCP2510_ID_EID0];
+
+	id->ext = is_mask ? eid != 0 :
+		  !!(regs[MCP2510_ID_SIDL] & MCP2510_SIDL_EXIDE);
+	id->id = id->ext ? sid << MCP2510_EID_BITS | eid : sid;
+}
+
+/*
  * What goes into the chip.  In listen-only mode a buffer with RXM 11
  * also takes frames an error destroyed (DS21801 10.3: the mode receives
  * "all messages (including messages with errors)" through RXM), loaded

@@ -209,6 +209,9 @@ void mcp2510_frame_decode(const u8 *regs, struct can_frame *cf);
 /* SIDH, SIDL, EID8, EID0 of a filter (EXIDE for extended) or of a mask. */
 void mcp2510_filter_id_encode(const struct mcp2510_filter_id *id,
 			      bool is_mask, u8 regs[MCP2510_ID_LEN]);
+/* Back from those four registers (a mask with EID bits is extended). */
+void mcp2510_filter_id_decode(const u8 regs[MCP2510_ID_LEN], bool is_mask,
+			      struct mcp2510_filter_id *id);
 /* -EINVAL unless every identifier fits its width and RXM is known. */
 int mcp2510_filters_check(const struct mcp2510_filters *f);
 

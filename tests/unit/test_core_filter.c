@@ -132,6 +132,29 @@ static void test_register_encoding(void **state)
 	assert_int_equal(regs[1], (0x155 & 7) << 5 | 2);
 }
 
+/* Decoding gives back what was encoded, filters and masks of both widths. */
+static void test_register_decoding(void **state)
+{
+	static const struct mcp2510_filter_id ids[] = {
+		{ 0x5a3, false }, { 0x7ff, false },
+		{ 0x155u << 18 | 2u << 16 | 0x1234, true },
+		{ 0x1fffffff, true }, { 1, true },
+	};
+	struct mcp2510_filter_id back;
+	u8 regs[MCP2510_ID_LEN];
+	unsigned int i, is_mask;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(ids); i++) {
+		for (is_mask = 0; is_mask <= 1; is_mask++) {
+			mcp2510_filter_id_encode(&ids[i], is_mask, regs);
+			mcp2510_filter_id_decode(regs, is_mask, &back);
+			assert_int_equal(back.ext, ids[i].ext);
+			assert_int_equal(back.id, ids[i].id);
+		}
+	}
+}
+
 static void test_check_and_apply(void **state)
 {
 	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
@@ -403,6 +426,7 @@ int main(void)
 		cmocka_unit_test(test_format_round_trips),
 		cmocka_unit_test(test_rxm_names),
 		cmocka_unit_test(test_register_encoding),
+		cmocka_unit_test(test_register_decoding),
 		cmocka_unit_test(test_check_and_apply),
 		cmocka_unit_test(test_default_accepts_everything),
 		cmocka_unit_test(test_an739_example),

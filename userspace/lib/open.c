@@ -212,21 +212,6 @@ static int chip_answers(struct mcp2510 *h)
 	return mcp2510_reg_write(&h->chip, reg, &old, 1);
 }
 
-/* One mask or filter from its four registers, as the core encodes it. */
-static void filter_id_decode(const u8 *r, bool is_mask,
-			     struct mcp2510_filter_id *id)
-{
-	u32 sid = (u32)r[MCP2510_ID_SIDH] << MCP2510_SID_SHIFT_SIDH |
-		  (r[MCP2510_ID_SIDL] & MCP2510_SIDL_SID_MASK) >>
-		  MCP2510_SID_SHIFT_SIDL;
-	u32 eid = (u32)(r[MCP2510_ID_SIDL] & MCP2510_SIDL_EID_MASK) << 16 |
-		  (u32)r[MCP2510_ID_EID8] << 8 | r[MCP2510_ID_EID0];
-
-	/* a mask has no EXIDE: one with EID bits masks extended ids */
-	id->ext = is_mask ? eid != 0 : r[MCP2510_ID_SIDL] & MCP2510_SIDL_EXIDE;
-	id->id = id->ext ? sid << MCP2510_EID_BITS | eid : sid;
-}
-
 /*
  * The acceptance filters the chip holds, if someone programmed them
  * since its last reset (the filter command, another program): RESET
@@ -257,10 +242,10 @@ static int chip_filters(struct mcp2510 *h, struct mcp2510_filters *f)
 	if (ret)
 		return ret;
 	for (i = 0; i < MCP2510_FILTER_COUNT; i++)
-		filter_id_decode(regs + MCP2510_REG_RXF(i), false,
+		mcp2510_filter_id_decode(regs + MCP2510_REG_RXF(i), false,
 				 &f->filter[i]);
 	for (i = 0; i < MCP2510_MASK_COUNT; i++)
-		filter_id_decode(regs + MCP2510_REG_RXM(i), true, &f->mask[i]);
+		mcp2510_filter_id_decode(regs + MCP2510_REG_RXM(i), true, &f->mask[i]);
 	f->rxm[0] = FIELD_GET(MCP2510_RXBCTRL_RXM_MASK, ctrl[0]);
 	f->rxm[1] = FIELD_GET(MCP2510_RXBCTRL_RXM_MASK, ctrl[1]);
 	f->rollover = ctrl[0] & MCP2510_RXB0CTRL_BUKT;
