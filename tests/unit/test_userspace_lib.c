@@ -9,6 +9,7 @@
 #include <errno.h>
 #include <poll.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <setjmp.h>
@@ -567,6 +568,62 @@ static void test_bus_outlives_its_handles(void **state)
 	assert_int_equal(errno, EINVAL);
 }
 
+/* The reserved space that lets the public structs grow (mcp2510.h). */
+static bool all_zero(const void *p, size_t len)
+{
+	const unsigned char *b = p;
+
+	while (len--)
+		if (*b++)
+			return false;
+	return true;
+}
+
+static void test_structs_can_grow(void **state)
+{
+	struct mcp2510_options o;
+	struct mcp2510_hw_filters f;
+	struct mcp2510_stats st;
+	struct mcp2510_event ev;
+	struct can_frame cf = frame(0x55, 1, 9);
+	struct mcp2510 *h;
+
+	(void)state;
+	/* a setting this library does not know is refused, not ignored */
+	memset(&o, 0xa5, sizeof(o));
+	mcp2510_options_init(&o);
+	assert_true(all_zero(o.reserved, sizeof(o.reserved)));
+	o.reserved[7] = 1;
+	errno = 0;
+	assert_null(mcp2510_open("sim", &o));
+	assert_int_equal(errno, EINVAL);
+
+	h = open_up("sim", 0);
+	memset(&f, 0xa5, sizeof(f));
+	assert_int_equal(mcp2510_get_filters(h, &f), 0);
+	assert_true(all_zero(f.reserved, sizeof(f.reserved)));
+	assert_int_equal(mcp2510_down(h), 0);
+	f.reserved[0] = 1;
+	assert_int_equal(mcp2510_set_filters(h, &f), -1);
+	assert_int_equal(errno, EINVAL);
+	f.reserved[0] = 0;
+	assert_int_equal(mcp2510_set_filters(h, &f), 0);
+
+	/* what the library fills in has the space zeroed */
+	assert_int_equal(mcp2510_up(h), 0);
+	assert_int_equal(mcp2510_send(h, &cf, 0), 0);
+	memset(&ev, 0xa5, sizeof(ev));
+	ev = next_event(h, MCP2510_EVENT_TX_DONE);
+	assert_true(all_zero(ev.reserved, sizeof(ev.reserved)));
+	memset(&st, 0xa5, sizeof(st));
+	assert_int_equal(mcp2510_stats(h, &st), 0);
+	assert_true(all_zero(st.reserved, sizeof(st.reserved)));
+	assert_int_equal(st.tx_frames, 1);
+	mcp2510_close(h);
+
+	assert_string_equal(mcp2510_version(), MCP2510_VERSION);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -586,6 +643,7 @@ int main(void)
 		cmocka_unit_test(test_event_ring_overflow_counted),
 		cmocka_unit_test(test_fd_readable_while_work_waits),
 		cmocka_unit_test(test_bus_outlives_its_handles),
+		cmocka_unit_test(test_structs_can_grow),
 	};
 
 	return cmocka_run_group_tests_name("userspace_lib", tests, NULL, NULL);

@@ -25,6 +25,14 @@
  * them out, handling the chip's interrupts while it waits.  When the ring
  * is full new events are dropped and counted in
  * mcp2510_stats.ring_overflows.
+ *
+ * Compatibility: the structs below keep their size and the places of
+ * their fields for as long as the soname stays libmcp2510.so.0.  A later
+ * version adds fields by taking them from the reserved space at the end
+ * of a struct.  What a program passes in must have that space zeroed (the
+ * _init and _default functions do; designated initialisers do), else the
+ * call fails with EINVAL: an older library refuses a setting it does not
+ * know rather than ignore it.  What the library fills in has it zeroed.
  */
 #ifndef LIBMCP2510_H
 #define LIBMCP2510_H
@@ -49,6 +57,7 @@ struct mcp2510;
 #define MCP2510_DEFAULT_TX_TIMEOUT_MS	1000
 #define MCP2510_EVENT_RING_SIZE		64u
 #define MCP2510_REGS_LEN		128u
+/* The version of this header; mcp2510_version() is the library's. */
 #define MCP2510_VERSION			"0.1.0"
 /* The oscillators the library accepts (EINVAL otherwise). */
 #define MCP2510_OSC_HZ_MIN		1000000u
@@ -63,6 +72,7 @@ struct mcp2510_options {
 	unsigned int poll_ms;		/* polling interval without INT line */
 	int tx_timeout_ms;		/* blocking send; -1 waits forever */
 	bool no_reset;			/* spidev: leave a running chip alone */
+	uint64_t reserved[8];		/* zero */
 };
 
 /* Fill @o with the defaults above. */
@@ -130,8 +140,9 @@ struct mcp2510_hw_id {
 struct mcp2510_hw_filters {
 	struct mcp2510_hw_id mask[2];	/* RXB0, RXB1 */
 	struct mcp2510_hw_id filter[6];	/* 0-1 for RXB0, 2-5 for RXB1 */
-	uint8_t rxm[2];			/* MCP2510_RXM_* of <linux/can/mcp2510.h> */
+	uint8_t rxm[2];			/* MCP2510_RXM_* of <mcp2510/registers.h> */
 	bool rollover;
+	uint32_t reserved[4];		/* zero */
 };
 
 /* The default: every frame accepted. */
@@ -203,6 +214,7 @@ struct mcp2510_event {
 	struct can_frame frame;
 	enum can_state state;
 	struct can_berr_counter bec;
+	uint64_t reserved[4];		/* zero */
 };
 
 /*
@@ -251,10 +263,14 @@ struct mcp2510_stats {
 	uint32_t arbitration_lost;
 	uint32_t tx_errors;
 	uint32_t warnings, passives, bus_offs, restarts;
+	uint64_t reserved[8];		/* zero */
 };
 
 MCP2510_EXPORT
 int mcp2510_stats(const struct mcp2510 *h, struct mcp2510_stats *s);
+/* The library's version ("0.1.0"), which may be newer than its header's. */
+MCP2510_EXPORT
+const char *mcp2510_version(void);
 /* "mcp2510", "mcp2515" or "mcp25625". */
 MCP2510_EXPORT
 const char *mcp2510_variant_name(const struct mcp2510 *h);

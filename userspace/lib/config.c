@@ -162,6 +162,7 @@ static void filters_from_core(const struct mcp2510_filters *in,
 {
 	unsigned int i;
 
+	memset(out, 0, sizeof(*out));
 	for (i = 0; i < MCP2510_MASK_COUNT; i++)
 		id_from_core(&in->mask[i], &out->mask[i]);
 	for (i = 0; i < MCP2510_FILTER_COUNT; i++)
@@ -179,6 +180,8 @@ void mcp2510_hw_filters_default(struct mcp2510_hw_filters *f)
 	filters_from_core(&core, f);
 }
 
+MCP2510_ABI_LAYOUT(struct mcp2510_hw_filters, 84);
+
 int mcp2510_set_filters(struct mcp2510 *h, const struct mcp2510_hw_filters *f)
 {
 	struct mcp2510_filters core;
@@ -186,6 +189,8 @@ int mcp2510_set_filters(struct mcp2510 *h, const struct mcp2510_hw_filters *f)
 
 	if (ret)
 		return mcp2510_fail(ret);
+	if (!mcp2510_reserved_zero(f->reserved, sizeof(f->reserved)))
+		return mcp2510_fail(-EINVAL);
 	filters_to_core(f, &core);
 	ret = mcp2510_filters_apply(&h->chip, &core);
 	if (ret)

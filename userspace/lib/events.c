@@ -38,6 +38,8 @@ static void ring_signal(struct event_ring *r, bool want)
 		r->signalled = read(r->fd, &v, sizeof(v)) != sizeof(v);
 }
 
+MCP2510_ABI_LAYOUT(struct mcp2510_event, 80);
+
 static struct mcp2510_event *ring_push(struct event_ring *r,
 				       enum mcp2510_event_type type)
 {

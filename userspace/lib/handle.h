@@ -3,6 +3,8 @@
 #ifndef MCP2510_HANDLE_H
 #define MCP2510_HANDLE_H
 
+#include <stddef.h>
+
 #include "mcp2510_core.h"
 #include "mcp2510.h"
 #include "transport.h"
@@ -46,5 +48,29 @@ bool mcp2510_ring_pop(struct event_ring *r, struct mcp2510_event *ev);
 int mcp2510_service(struct mcp2510 *h, int timeout_ms);
 /* Handle a pending interrupt on behalf of another handle's wait. */
 void mcp2510_irq_hook(void *ctx);
+
+/*
+ * A public struct's layout is the soname's promise (mcp2510.h): its
+ * reserved space stays last, and on LP64 (where it was measured) its size
+ * does not change.
+ */
+#define MCP2510_ABI_LAYOUT(type, lp64_size)					\
+	_Static_assert(offsetof(type, reserved) +				\
+		       sizeof(((type *)NULL)->reserved) == sizeof(type),	\
+		       #type ": the reserved space must stay last");		\
+	_Static_assert(sizeof(void *) != 8 || sizeof(type) == (lp64_size),	\
+		       #type ": the size must not change")
+
+/* A struct passed in whose reserved space is not zero asks for more than
+ * this library knows. */
+static inline bool mcp2510_reserved_zero(const void *reserved, size_t len)
+{
+	const unsigned char *p = reserved;
+
+	while (len--)
+		if (*p++)
+			return false;
+	return true;
+}
 
 #endif /* MCP2510_HANDLE_H */

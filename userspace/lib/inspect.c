@@ -55,6 +55,11 @@ int mcp2510_state(struct mcp2510 *h, enum can_state *state,
 	return 0;
 }
 
+const char *mcp2510_version(void)
+{
+	return MCP2510_VERSION;
+}
+
 /* The words "ip -details link show" uses. */
 const char *mcp2510_state_name(enum can_state state)
 {
@@ -142,6 +147,8 @@ int mcp2510_reg_name(unsigned int addr, char *buf, size_t len)
 	name_reg(addr, buf, len);
 	return 0;
 }
+
+MCP2510_ABI_LAYOUT(struct mcp2510_stats, 144);
 
 int mcp2510_stats(const struct mcp2510 *h, struct mcp2510_stats *s)
 {

@@ -19,6 +19,8 @@ int mcp2510_fail(int ret)
 	return -1;
 }
 
+MCP2510_ABI_LAYOUT(struct mcp2510_options, 112);
+
 void mcp2510_options_init(struct mcp2510_options *o)
 {
 	memset(o, 0, sizeof(*o));
@@ -321,7 +323,8 @@ struct mcp2510 *mcp2510_open(const char *transport,
 		o = &defaults;
 	}
 	v = variant_by_name(o->variant);
-	if (!transport || !v) {
+	if (!transport || !v ||
+	    !mcp2510_reserved_zero(o->reserved, sizeof(o->reserved))) {
 		errno = EINVAL;
 		return NULL;
 	}

@@ -467,7 +467,7 @@ int cli_device_check(const struct cli_device *d, struct cli_args *a)
 
 void cli_version(FILE *out, const char *prog)
 {
-	fprintf(out, "%s %s\n", prog, MCP2510_VERSION);
+	fprintf(out, "%s %s\n", prog, mcp2510_version());
 }
 
 static bool filter_setting_is_id(const char *name)
