@@ -10,7 +10,29 @@ ENSURE := $(TOP)/scripts/ensure-packages
 
 CC ?= cc
 CSTD := -std=c11
-WARN := -Wall -Wextra -Werror
+
+# Warnings are errors in the project's own checks (make check passes
+# WERROR=1 to every step), not for someone building a release with a
+# compiler newer than the one the code was last checked with.
+WERROR ?= 0
+WARN := -Wall -Wextra $(if $(filter 1,$(WERROR)),-Werror)
+
+# Packages are installed only by make deps, check, demo and bench (or any
+# target with INSTALL_DEPS=1); other targets name what is missing and stop
+# (scripts/ensure-packages).  Without dpkg nothing is checked: Buildroot,
+# Yocto and other distributions bring their own dependencies.
+ifneq ($(filter deps check demo bench,$(MAKECMDGOALS)),)
+INSTALL_DEPS := 1
+endif
+export MCP2510_INSTALL_DEPS := $(filter 1,$(INSTALL_DEPS))
+
+# Quiet by default ("  CC      file"); V=1 prints every command.
+V ?= 0
+ifeq ($(V),1)
+quiet :=
+else
+quiet = @printf '  %-7s %s\n' '$(1)' '$(patsubst $(TOP)/%,%,$(2))';
+endif
 SANITIZE := -fsanitize=address,undefined -fno-omit-frame-pointer \
 	    -fno-sanitize-recover=all
 
@@ -22,6 +44,7 @@ all: unit-build userspace
 
 help:
 	@echo "make check     everything CI runs (installs what it needs)"
+	@echo "make deps      the Debian packages builds and tests need"
 	@echo "make demo      two simulated MCP2510s exchanging frames"
 	@echo "make unit      cmocka suites; make unit-asan: the same under ASan/UBSan"
 	@echo "make coverage  line coverage of the chip model (tests/sim)"
@@ -33,6 +56,19 @@ help:
 deps:
 	@$(ENSURE) $(HOST_PACKAGES)
 
+# $(call option_stamp,FILE,TEXT): a rule keeping TEXT in FILE, rewritten
+# only when TEXT changes.  What a build option affects depends on the
+# stamp holding that option, so changing the option rebuilds it.
+define option_stamp
+$(1): FORCE
+	@mkdir -p $$(@D)
+	@printf '%s\n' '$(subst ','\'',$(2))' | cmp -s - $$@ || \
+		printf '%s\n' '$(subst ','\'',$(2))' >$$@
+endef
+
+.PHONY: FORCE
+FORCE:
+
 # Fragments append their steps to CHECK_STEPS in the order they should run.
 CHECK_STEPS :=
 
@@ -42,6 +78,7 @@ include userspace/userspace.mk
 include tests/unit/unit.mk
 include driver/driver.mk
 include tests/install/install.mk
+include tests/build/build.mk
 include tests/vm-arm64/vm-arm64.mk
 include tests/kmod/kmod.mk
 include tests/vm/vm.mk
@@ -58,7 +95,7 @@ CHECK_STEPS += vmtest
 check: deps
 	@set -e; check_start=$$(date +%s); for step in $(CHECK_STEPS); do \
 		step_start=$$(date +%s); echo "== make $$step"; \
-		$(MAKE) --no-print-directory $$step; \
+		$(MAKE) --no-print-directory $$step INSTALL_DEPS=1 WERROR=1; \
 		echo "== make $$step: done in $$(( $$(date +%s) - step_start )) s"; \
 	done; \
 	echo "== make check: all steps passed in $$(( $$(date +%s) - check_start )) s ($(CHECK_STEPS))"

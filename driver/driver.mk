@@ -208,8 +208,9 @@ define strict_build
 	@echo "$(1): no warnings, no simulator code in mcp2510.ko"
 endef
 
-# apt's lists may be missing on a fresh machine: the 6.12 name comes from them.
-APT_UPDATE := if [ "$$(id -u)" -eq 0 ]; then apt-get update -q; \
+# apt's lists may be missing on a fresh machine: the 6.12 name comes from
+# them.  Only the targets that install packages fetch them.
+APT_UPDATE := [ "$(MCP2510_INSTALL_DEPS)" != 1 ] || if [ "$$(id -u)" -eq 0 ]; then apt-get update -q; \
 	      else sudo apt-get update -q; fi >/dev/null
 
 modules-check: modules-deps

@@ -25,7 +25,9 @@
 US_DIR := userspace
 US_OUT ?= $(BUILD)/userspace
 US_OBJ := $(US_OUT)/obj
-US_VERSION := 0.1.0
+# one version, the public header's
+US_VERSION := $(shell sed -n 's/^\#define MCP2510_VERSION[[:space:]]*"\(.*\)"/\1/p' \
+		$(TOP)/$(US_DIR)/include/mcp2510.h)
 US_SOVERSION := 0
 MCP2510_SIM ?= 1
 PREFIX ?= /usr/local
@@ -40,6 +42,11 @@ US_CPPFLAGS := -I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib \
 	       -I$(TOP)/tests/sim
 US_CFLAGS := $(CSTD) $(WARN) -O2 -g -fPIC -fvisibility=hidden \
 	     -D_FORTIFY_SOURCE=2
+# A distribution's flags (CFLAGS, CPPFLAGS, LDFLAGS from the environment or
+# the command line) come after the project's, so they win.
+US_CFLAGS += $(CFLAGS)
+US_CPPFLAGS += $(CPPFLAGS)
+US_LDFLAGS := $(LDFLAGS)
 
 # Before libgpiod-dev is installed (make deps), the version apt offers.
 US_PKG_CONFIG := $(if $(PKG_CONFIG_PATH),PKG_CONFIG_PATH='$(PKG_CONFIG_PATH)') \
@@ -98,63 +105,56 @@ userspace-gpiod2: $(US_GPIOD_DIR)/v2/pkgconfig/libgpiod.pc
 userspace-deps:
 	@$(ENSURE) $(US_PACKAGES)
 
-$(US_OBJ)/%.o: $(TOP)/%.c | userspace-deps
+# Every object and link depends on the options it was built with: a build
+# directory switched to MCP2510_SIM=0, to other flags or to another
+# libgpiod rebuilds, never mixing the two.
+US_OPTIONS := $(US_OUT)/options
+$(eval $(call option_stamp,$(US_OPTIONS),$(CC) $(US_CFLAGS) $(US_CPPFLAGS) \
+	$(US_LDFLAGS) $(US_LDLIBS) gpiod=$(US_GPIOD_VERSION) sim=$(MCP2510_SIM)))
+
+$(US_OBJ)/%.o: $(TOP)/%.c $(US_OPTIONS) | userspace-deps
 	@mkdir -p $(@D)
-	$(CC) $(US_CFLAGS) $(US_CPPFLAGS) -MMD -MP -c $< -o $@
+	$(call quiet,CC,$<)$(CC) $(US_CFLAGS) $(US_CPPFLAGS) -MMD -MP -c $< -o $@
 
 # The transport and, when built, the model as one object of their own.
-$(US_SIM_OBJ): $(call us_objs,$(US_SIM_PARTS))
-	$(LD) -r -o $@ $^
+$(US_SIM_OBJ): $(call us_objs,$(US_SIM_PARTS)) $(US_OPTIONS)
+	$(call quiet,LD,$@)$(LD) -r -o $@ $(filter %.o,$^)
 
 $(US_A): $(US_LIB_OBJS)
 	@mkdir -p $(@D)
-	rm -f $@
-	$(AR) rcs $@ $^
+	@rm -f $@
+	$(call quiet,AR,$@)$(AR) rcs $@ $^
 
 $(US_SO): $(US_LIB_OBJS)
 	@mkdir -p $(@D)
-	$(CC) -shared -Wl,-soname,$(US_SONAME) -Wl,--no-undefined $^ \
-		$(US_LDLIBS) -o $@
-	ln -sf $(notdir $@) $(@D)/$(US_SONAME)
-	ln -sf $(US_SONAME) $(@D)/libmcp2510.so
+	$(call quiet,LD,$@)$(CC) $(US_LDFLAGS) -shared -Wl,-soname,$(US_SONAME) \
+		-Wl,--no-undefined $^ $(US_LDLIBS) -o $@
+	@ln -sf $(notdir $@) $(@D)/$(US_SONAME)
+	@ln -sf $(US_SONAME) $(@D)/libmcp2510.so
 
 $(US_CTL): $(call us_objs,$(US_CTL_SRCS) $(US_TOOL_SRCS)) $(US_A)
 	@mkdir -p $(@D)
-	$(CC) $^ $(US_LDLIBS) -o $@
+	$(call quiet,LD,$@)$(CC) $(US_LDFLAGS) $^ $(US_LDLIBS) -o $@
 
 $(US_DAEMON): $(call us_objs,$(US_DAEMON_SRCS) $(US_TOOL_SRCS)) $(US_A)
 	@mkdir -p $(@D)
-	$(CC) $^ $(US_LDLIBS) -o $@
+	$(call quiet,LD,$@)$(CC) $(US_LDFLAGS) $^ $(US_LDLIBS) -o $@
 
-# A build directory switched to another libgpiod rebuilds its backend,
-# and with it the library and the tools, never mixing the two.
-$(US_OUT)/gpiod: FORCE
-	@mkdir -p $(@D)
-	@echo '$(US_GPIOD_VERSION) $(US_CFLAGS) $(US_LDLIBS)' | cmp -s - $@ || \
-		echo '$(US_GPIOD_VERSION) $(US_CFLAGS) $(US_LDLIBS)' > $@
-$(call us_objs,$(call us_gpio_srcs,1) $(call us_gpio_srcs,2)): $(US_OUT)/gpiod
-
-# Rebuild the .pc when PREFIX or LIBDIR change.
-$(US_OUT)/prefix: FORCE
-	@mkdir -p $(@D)
-	@echo '$(PREFIX) $(LIBDIR)' | cmp -s - $@ || echo '$(PREFIX) $(LIBDIR)' > $@
+# The .pc and the unit name where install-userspace puts things.
+$(eval $(call option_stamp,$(US_OUT)/prefix,$(PREFIX) $(LIBDIR)))
 
 $(US_PC): $(TOP)/$(US_DIR)/libmcp2510.pc.in $(US_OUT)/prefix
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
+	$(call quiet,GEN,$@)sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' \
 	    -e 's|@VERSION@|$(US_VERSION)|' $< > $@
 
-# The unit names the daemon where install-userspace puts it.
 $(US_UNIT): $(TOP)/$(US_DIR)/systemd/mcp2510d@.service.in $(US_OUT)/prefix
-	sed -e 's|@BINDIR@|$(PREFIX)/bin|' $< > $@
-
-.PHONY: FORCE
-FORCE:
+	$(call quiet,GEN,$@)sed -e 's|@BINDIR@|$(PREFIX)/bin|' $< > $@
 
 -include $(shell find $(US_OBJ) -name '*.d' 2>/dev/null)
 
 install-userspace: userspace
 	install -d $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(PREFIX)/bin \
-		$(DESTDIR)$(PREFIX)/include/linux/can
+		$(DESTDIR)$(PREFIX)/include/mcp2510
 	install -m 644 $(US_A) $(DESTDIR)$(LIBDIR)/
 	install -m 755 $(US_SO) $(DESTDIR)$(LIBDIR)/
 	ln -sf $(notdir $(US_SO)) $(DESTDIR)$(LIBDIR)/$(US_SONAME)
@@ -164,7 +164,7 @@ install-userspace: userspace
 	install -m 644 $(TOP)/$(US_DIR)/include/mcp2510.h \
 		$(DESTDIR)$(PREFIX)/include/
 	install -m 644 $(TOP)/uapi/linux/can/mcp2510.h \
-		$(DESTDIR)$(PREFIX)/include/linux/can/
+		$(DESTDIR)$(PREFIX)/include/mcp2510/registers.h
 	install -d $(DESTDIR)$(MANDIR)/man1 $(DESTDIR)$(MANDIR)/man3 \
 		$(DESTDIR)$(MANDIR)/man8 $(DESTDIR)$(SYSTEMDUNITDIR) \
 		$(DESTDIR)$(US_EXAMPLEDIR)
@@ -181,12 +181,12 @@ uninstall-userspace:
 		$(US_SONAME) libmcp2510.so pkgconfig/$(notdir $(US_PC))) \
 		$(addprefix $(DESTDIR)$(PREFIX)/bin/,$(notdir $(US_CTL) $(US_DAEMON))) \
 		$(DESTDIR)$(PREFIX)/include/mcp2510.h \
-		$(DESTDIR)$(PREFIX)/include/linux/can/mcp2510.h \
+		$(DESTDIR)$(PREFIX)/include/mcp2510/registers.h \
 		$(foreach m,$(US_MANS),$(DESTDIR)$(MANDIR)/man$(subst .,,$(suffix $(m)))/$(notdir $(m))) \
 		$(DESTDIR)$(SYSTEMDUNITDIR)/$(notdir $(US_UNIT)) \
 		$(addprefix $(DESTDIR)$(US_EXAMPLEDIR)/,$(notdir $(US_EXAMPLES)))
 	@[ -z "$(DESTDIR)" ] || for d in $(LIBDIR)/pkgconfig $(PREFIX)/bin \
-			$(PREFIX)/include/linux/can $(MANDIR)/man1 $(MANDIR)/man3 \
+			$(PREFIX)/include/mcp2510 $(MANDIR)/man1 $(MANDIR)/man3 \
 			$(MANDIR)/man8 $(SYSTEMDUNITDIR) $(US_EXAMPLEDIR); do \
 		while [ -n "$$d" ] && rmdir "$(DESTDIR)$$d" 2>/dev/null; do d=$${d%/*}; done; \
 	done

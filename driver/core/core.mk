@@ -25,10 +25,10 @@ CORE_CHECK_OBJS := $(patsubst $(CORE_DIR)/%.c,$(BUILD)/core/%.o,$(CORE_SRCS))
 $(BUILD)/core/%.o: $(TOP)/$(CORE_DIR)/%.c $(wildcard $(TOP)/$(CORE_DIR)/*.h) \
 		$(TOP)/uapi/linux/can/mcp2510.h
 	@mkdir -p $(@D)
-	$(CC) $(CSTD) $(WARN) $(CORE_STRICT) $(CORE_CPPFLAGS) -c $< -o $@
+	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) $(CORE_STRICT) $(CORE_CPPFLAGS) -c $< -o $@
 
 $(BUILD)/core/core.o: $(CORE_CHECK_OBJS)
-	$(LD) -r -o $@ $^
+	$(call quiet,LD,$@)$(LD) -r -o $@ $^
 
 .PHONY: core-check
 core-check: $(BUILD)/core/core.o

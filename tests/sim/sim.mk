@@ -20,10 +20,10 @@ SIM_CHECK_OBJS := $(patsubst $(SIM_DIR)/%.c,$(BUILD)/sim/%.o,$(SIM_SRCS))
 
 $(BUILD)/sim/%.o: $(TOP)/$(SIM_DIR)/%.c $(wildcard $(TOP)/$(SIM_DIR)/*.h)
 	@mkdir -p $(@D)
-	$(CC) $(CSTD) $(WARN) $(SIM_STRICT) $(SIM_CPPFLAGS) -c $< -o $@
+	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) $(SIM_STRICT) $(SIM_CPPFLAGS) -c $< -o $@
 
 $(BUILD)/sim/model.o: $(SIM_CHECK_OBJS)
-	$(LD) -r -o $@ $^
+	$(call quiet,LD,$@)$(LD) -r -o $@ $^
 
 .PHONY: sim-check
 sim-check: $(BUILD)/sim/model.o

@@ -80,9 +80,12 @@ UNIT_FLAGS_coverage := --coverage -O0
 unit_objs = $(patsubst %.c,$(BUILD)/$(1)/obj/%.o,$(UNIT_DIR)/$(2).c $($(2)_SRCS))
 
 define UNIT_FLAVOUR_RULES
-$(BUILD)/$(1)/obj/%.o: $(TOP)/%.c | unit-deps
+$(eval $(call option_stamp,$(BUILD)/$(1)/options,$(CC) $(UNIT_CFLAGS) \
+	$(UNIT_FLAGS_$(1)) $(UNIT_LDLIBS)))
+
+$(BUILD)/$(1)/obj/%.o: $(TOP)/%.c $(BUILD)/$(1)/options | unit-deps
 	@mkdir -p $$(@D)
-	$$(CC) $$(UNIT_CFLAGS) $$(UNIT_FLAGS_$(1)) -MMD -MP -c $$< -o $$@
+	$$(call quiet,CC,$$<)$$(CC) $$(UNIT_CFLAGS) $$(UNIT_FLAGS_$(1)) -MMD -MP -c $$< -o $$@
 
 .PHONY: $(1)-build
 $(1)-build: $(addprefix $(BUILD)/$(1)/,$(UNIT_SUITES))
@@ -90,7 +93,7 @@ endef
 
 define UNIT_SUITE_RULES
 $(BUILD)/$(1)/$(2): $(call unit_objs,$(1),$(2)) | unit-deps
-	$$(CC) $$(UNIT_FLAGS_$(1)) $$^ $$(UNIT_LDLIBS) -o $$@
+	$$(call quiet,LD,$$@)$$(CC) $$(UNIT_FLAGS_$(1)) $$^ $$(UNIT_LDLIBS) -o $$@
 -include $(patsubst %.o,%.d,$(call unit_objs,$(1),$(2)))
 endef
 
@@ -107,7 +110,7 @@ unit_run = fail=; for t in $(UNIT_SUITES); do \
 
 .PHONY: unit unit-asan coverage unit-deps
 unit-deps:
-	@[ -f /usr/include/cmocka.h ] || $(ENSURE) libcmocka-dev
+	@$(ENSURE) libcmocka-dev
 
 unit: unit-build
 	@$(call unit_run,unit)

@@ -39,7 +39,7 @@ vm-guest-tools: $(VM_GUEST_TOOLS)
 
 $(VM_GUEST_BIN)/%: $(VM_DIR)/guest/%.c
 	@mkdir -p $(@D)
-	$(CC) $(CSTD) $(WARN) -O2 -o $@ $<
+	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) -O2 -o $@ $<
 
 .PHONY: vm-kernels vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug vm-kernel-rt initramfs \
 	vm-kernel-debug-background vmtest vmtest-release vmtest-debug vmtest-one \
