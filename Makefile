@@ -41,6 +41,7 @@ include driver/core/core.mk
 include userspace/userspace.mk
 include tests/unit/unit.mk
 include driver/driver.mk
+include tests/trixie/trixie.mk
 include tests/install/install.mk
 include tests/vm-arm64/vm-arm64.mk
 include tests/kmod/kmod.mk
