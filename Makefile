@@ -77,6 +77,7 @@ include driver/core/core.mk
 include userspace/userspace.mk
 include tests/unit/unit.mk
 include driver/driver.mk
+include tests/trixie/trixie.mk
 include tests/install/install.mk
 include tests/build/build.mk
 include tests/vm-arm64/vm-arm64.mk

@@ -13,6 +13,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <setjmp.h>
 #include <string.h>
 #include <time.h>
@@ -112,10 +113,16 @@ static char chip_obj, line_obj;
 #define FAKE_CHIP ((struct gpiod_chip *)&chip_obj)
 #define FAKE_LINE ((struct gpiod_line *)&line_obj)
 
+/*
+ * The names the library passed, copied: they point into its own stack
+ * frame, gone by the time a test looks (libgpiod copies them too).
+ */
 static struct {
-	const char *chip_name;
+	const char *chip_name;		/* NULL until a chip is opened */
+	char chip_buf[64];
 	unsigned int offset;
-	const char *line_name;
+	const char *line_name;		/* NULL until a line is looked up */
+	char line_buf[64];
 	const char *consumer;
 	bool chip_missing, line_busy;
 	int level;			/* what gpiod_line_get_value returns */
@@ -126,9 +133,15 @@ static struct {
 	long last_timeout_ms;
 } g;
 
+static const char *remember(char *buf, size_t size, const char *name)
+{
+	snprintf(buf, size, "%s", name);
+	return buf;
+}
+
 struct gpiod_chip *__wrap_gpiod_chip_open_lookup(const char *descr)
 {
-	g.chip_name = descr;
+	g.chip_name = remember(g.chip_buf, sizeof(g.chip_buf), descr);
 	if (g.chip_missing) {
 		errno = ENOENT;
 		return NULL;
@@ -153,7 +166,7 @@ struct gpiod_line *__wrap_gpiod_chip_get_line(struct gpiod_chip *chip,
 /* every chip's lines by name: only MCP_INT exists */
 struct gpiod_line *__wrap_gpiod_line_find(const char *name)
 {
-	g.line_name = name;
+	g.line_name = remember(g.line_buf, sizeof(g.line_buf), name);
 	g.found_anywhere++;
 	if (strcmp(name, "MCP_INT")) {
 		errno = ENOENT;
@@ -172,7 +185,7 @@ struct gpiod_line *__wrap_gpiod_chip_find_line(struct gpiod_chip *chip,
 					       const char *name)
 {
 	assert_ptr_equal(chip, FAKE_CHIP);
-	g.line_name = name;
+	g.line_name = remember(g.line_buf, sizeof(g.line_buf), name);
 	if (strcmp(name, "MCP_INT")) {
 		errno = ENOENT;
 		return NULL;

@@ -1,0 +1,61 @@
+# tests/trixie/trixie.mk: the userspace port, its unit suites and the
+# modules on Debian 13 (trixie), in a root made with debootstrap.
+#
+#   make trixie-root    build/trixie/root: a minimal Debian 13 with the
+#                       toolchain, cmocka, libgpiod 2 and the 6.12 kernel
+#                       headers, from the Debian archive the host's apt uses
+#                       (tests/trixie/make-root); made once, made anew when
+#                       its package list changes
+#   make trixie-check   in that root, on this tree: make userspace, unit and
+#                       unit-asan (libgpiod 2 is the root's own, so the
+#                       userspace build takes the libgpiod 2 backend), then
+#                       both modules against its 6.12 headers with W=1 and
+#                       sparse, any warning failing the build as in
+#                       modules-check
+#
+# The tree is mounted read-only at /src in the root and built into the
+# root's /build (tests/trixie/in-root), so the host's build/ is left alone.
+
+TRIXIE_DIR := $(TOP)/tests/trixie
+TRIXIE_ROOT := $(BUILD)/trixie/root
+# What runs inside: the same Makefile, building into the root's /build.
+TRIXIE_MAKE := make --no-print-directory -C /src BUILD=/build
+
+.PHONY: trixie-root trixie-root-background trixie-check trixie-inside \
+	trixie-modules
+trixie-root:
+	@$(TRIXIE_DIR)/make-root $(TRIXIE_ROOT)
+
+trixie-check: trixie-root
+	@$(TRIXIE_DIR)/in-root $(TRIXIE_ROOT) $(TRIXIE_MAKE) trixie-inside || { \
+		echo "trixie-check: FAILED in the Debian 13 root (output above)" >&2; \
+		exit 1; }
+
+# ---- run inside the root (in-root), never on the host ----------------------
+
+# The 6.12 headers package the root's linux-headers-<arch> depends on.
+TRIXIE_HEADERS = $(shell dpkg-query -W -f='$${Depends}' \
+	linux-headers-$$(dpkg --print-architecture) 2>/dev/null | \
+	sed -n 's/.*\(linux-headers-6\.12\.[^ ,]*\).*/\1/p')
+
+trixie-inside:
+	@[ -f /src/tests/trixie/trixie.mk ] && [ "$(BUILD)" = /build ] || { \
+		echo "trixie-inside: runs in the Debian 13 root: make trixie-check" >&2; \
+		exit 1; }
+	@echo "== Debian $$(cat /etc/debian_version), $$(gcc --version | head -n 1), libgpiod $(US_GPIOD_VERSION)"
+	@$(MAKE) -j$$(nproc) userspace unit-build unit-asan-build
+	@$(MAKE) unit unit-asan
+	@$(MAKE) -j$$(nproc) trixie-modules
+	@echo "trixie-check: passed on Debian $$(cat /etc/debian_version): userspace (libgpiod $(US_GPIOD_VERSION) backend), $(words $(UNIT_SUITES)) unit suites plain and under ASan/UBSan, modules against $(TRIXIE_HEADERS) with W=1 and sparse, no warnings"
+
+trixie-modules:
+	$(call strict_build,$(TRIXIE_HEADERS),6.12)
+
+# The root is made in the background while the first steps run (its
+# download waits on the network, its install on the disk); trixie-check
+# waits for it.
+trixie-root-background:
+	@$(TRIXIE_DIR)/make-root $(TRIXIE_ROOT) --background
+
+CHECK_STEPS := trixie-root-background $(CHECK_STEPS)
+CHECK_STEPS += trixie-check
