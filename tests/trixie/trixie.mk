@@ -18,8 +18,9 @@
 
 TRIXIE_DIR := $(TOP)/tests/trixie
 TRIXIE_ROOT := $(BUILD)/trixie/root
-# What runs inside: the same Makefile, building into the root's /build.
-TRIXIE_MAKE := make --no-print-directory -C /src BUILD=/build
+# What runs inside: the same Makefile, building into the root's /build,
+# with warnings errors when they are here (make check).
+TRIXIE_MAKE := make --no-print-directory -C /src BUILD=/build WERROR=$(WERROR)
 
 .PHONY: trixie-root trixie-root-background trixie-check trixie-inside \
 	trixie-modules
