@@ -61,6 +61,8 @@ void mcp2510_power_off(struct mcp2510_priv *priv)
  * came while other devices were still suspending) the event reported
  * here aborts the suspend, which would otherwise sleep with a chip that
  * no longer can wake it.  Either way the device's wakeup source counts it.
+ * WAKIF is the only interrupt enabled, so a chip that cannot be read (its
+ * SPI controller may be suspended already) woke all the same.
  */
 static irqreturn_t mcp2510_wake_irq_thread(int irq, void *data)
 {
@@ -76,10 +78,9 @@ static irqreturn_t mcp2510_wake_irq_thread(int irq, void *data)
 		dev_err_ratelimited(dev, "cannot read the wake-up: %pe\n",
 				    ERR_PTR(woke));
 		disable_irq_nosync(irq);
-		return IRQ_HANDLED;
-	}
-	if (!woke)
+	} else if (!woke) {
 		return IRQ_NONE;
+	}
 	pm_wakeup_dev_event(dev, 0, true);
 	return IRQ_HANDLED;
 }
