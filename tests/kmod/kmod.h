@@ -107,9 +107,16 @@ struct mcp2510_sim {
 	struct can_frame inject_frame;	/* under lock */
 	u32 inject_bitrate;		/* under lock */
 	int inject_result;		/* under lock: sim_phantom_send()'s */
-	bool inject_on_suspend;		/* under lock: start the timer then */
+	u8 inject_phase;		/* under lock: MCP2510_SIM_INJECT_* */
 	u32 inject_ms;			/* under lock */
-	struct dev_pm_domain pm_domain;	/* the root device's noirq suspend */
+	struct dev_pm_domain pm_domain;	/* the root device's suspend */
+};
+
+/* When debugfs inject_later starts its timer. */
+enum {
+	MCP2510_SIM_INJECT_NOW,		/* at the write */
+	MCP2510_SIM_INJECT_DEVICES,	/* in the system suspend's devices phase */
+	MCP2510_SIM_INJECT_NOIRQ,	/* in its noirq phase */
 };
 
 /* kmod_clock.c */

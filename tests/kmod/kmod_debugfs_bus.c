@@ -78,22 +78,27 @@ static const struct file_operations inject_fops = {
 };
 
 /*
- * "[suspend] MS FRAME [BITRATE]": the phantom sends FRAME MS milliseconds
- * from now, on a kernel timer; with "suspend", MS milliseconds after the
- * next system suspend reaches its noirq phase (device interrupts
- * suspended, wakeup interrupts armed).  The timer runs while the guest's
- * tasks are frozen, so a scenario can put a frame on the bus in the
- * middle of a suspend.  A new write replaces a frame not yet sent.
+ * "[devices|noirq] MS FRAME [BITRATE]": the phantom sends FRAME MS
+ * milliseconds from now, on a kernel timer.  With "devices" the time
+ * counts from the next system suspend's devices phase (the simulator's
+ * root device suspends after the chips, so their drivers have prepared
+ * them; MS 0 sends the frame from within that callback), with "noirq"
+ * from its noirq phase (device interrupts suspended, wakeup interrupts
+ * armed).  The timer runs while the guest's tasks are frozen, so a
+ * scenario can put a frame on the bus in the middle of a suspend.  A new
+ * write replaces a frame not yet sent.
  */
-static enum hrtimer_restart inject_timer_fired(struct hrtimer *timer)
+static void inject_send(struct mcp2510_sim *sim)
 {
-	struct mcp2510_sim *sim = container_of(timer, struct mcp2510_sim,
-					       inject_timer);
-
 	mcp2510_sim_lock(sim);
 	sim->inject_result = sim_phantom_send(&sim->bus, &sim->inject_frame,
 					      sim->inject_bitrate);
 	mcp2510_sim_unlock(sim);
+}
+
+static enum hrtimer_restart inject_timer_fired(struct hrtimer *timer)
+{
+	inject_send(container_of(timer, struct mcp2510_sim, inject_timer));
 	return HRTIMER_NORESTART;
 }
 
@@ -102,18 +107,20 @@ static ssize_t inject_later_write(struct file *file, const char __user *ubuf,
 {
 	struct mcp2510_sim *sim = file_inode(file)->i_private;
 	char command[COMMAND_LEN], *cursor = command, *word, *frame;
+	u8 phase = MCP2510_SIM_INJECT_NOW;
 	struct can_frame cf;
 	u32 ms, bitrate;
 	int ret;
-
-	bool on_suspend;
 
 	ret = read_command(ubuf, len, command, sizeof(command));
 	if (ret)
 		return ret;
 	word = next_word(&cursor);
-	on_suspend = word && !strcmp(word, "suspend");
-	if (on_suspend)
+	if (word && !strcmp(word, "devices"))
+		phase = MCP2510_SIM_INJECT_DEVICES;
+	else if (word && !strcmp(word, "noirq"))
+		phase = MCP2510_SIM_INJECT_NOIRQ;
+	if (phase != MCP2510_SIM_INJECT_NOW)
 		word = next_word(&cursor);
 	if (!word || kstrtou32(word, 0, &ms))
 		return -EINVAL;
@@ -128,37 +135,54 @@ static ssize_t inject_later_write(struct file *file, const char __user *ubuf,
 	sim->inject_bitrate = bitrate;
 	sim->inject_result = 0;
 	sim->inject_ms = ms;
-	sim->inject_on_suspend = on_suspend;
+	sim->inject_phase = phase;
 	mcp2510_sim_unlock(sim);
-	if (!on_suspend)
+	if (phase == MCP2510_SIM_INJECT_NOW)
 		hrtimer_start(&sim->inject_timer, ms_to_ktime(ms),
 			      HRTIMER_MODE_REL_SOFT);
 	return len;
 }
 
-/*
- * The root device's noirq suspend comes after every chip's (children
- * suspend first) and after genirq suspended the device interrupts.
- */
-static int sim_suspend_noirq(struct device *dev)
+static void inject_phase_reached(struct device *dev, u8 phase)
 {
 	struct mcp2510_sim *sim = dev_get_drvdata(dev);
 	bool start;
 	u32 ms;
 
 	mcp2510_sim_lock(sim);
-	start = sim->inject_on_suspend;
-	sim->inject_on_suspend = false;
+	start = sim->inject_phase == phase;
+	if (start)
+		sim->inject_phase = MCP2510_SIM_INJECT_NOW;
 	ms = sim->inject_ms;
 	mcp2510_sim_unlock(sim);
-	if (start)
+	if (!start)
+		return;
+	if (ms) {
 		hrtimer_start(&sim->inject_timer, ms_to_ktime(ms),
 			      HRTIMER_MODE_REL_SOFT);
+		return;
+	}
+	inject_send(sim);
+	/* the start of frame goes out at the next advance: now */
+	mcp2510_sim_lock(sim);
+	mcp2510_sim_unlock(sim);
+}
+
+static int sim_suspend(struct device *dev)
+{
+	inject_phase_reached(dev, MCP2510_SIM_INJECT_DEVICES);
+	return 0;
+}
+
+static int sim_suspend_noirq(struct device *dev)
+{
+	inject_phase_reached(dev, MCP2510_SIM_INJECT_NOIRQ);
 	return 0;
 }
 
 void mcp2510_sim_suspend_attach(struct mcp2510_sim *sim)
 {
+	sim->pm_domain.ops.suspend = sim_suspend;
 	sim->pm_domain.ops.suspend_noirq = sim_suspend_noirq;
 	dev_set_drvdata(sim->root, sim);
 	dev_pm_domain_set(sim->root, &sim->pm_domain);
@@ -176,11 +200,10 @@ static ssize_t inject_later_read(struct file *file, char __user *ubuf,
 	struct mcp2510_sim *sim = file_inode(file)->i_private;
 	char text[24];
 	int result, n;
-
 	bool armed;
 
 	mcp2510_sim_lock(sim);
-	armed = sim->inject_on_suspend;
+	armed = sim->inject_phase != MCP2510_SIM_INJECT_NOW;
 	result = sim->inject_result;
 	mcp2510_sim_unlock(sim);
 	if (armed || hrtimer_active(&sim->inject_timer))

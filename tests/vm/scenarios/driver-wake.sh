@@ -4,7 +4,7 @@
 # Wake-on-CAN in a real suspend-to-idle.  The chips' software node says
 # wakeup-source (and microchip,wakeup-filter: CNF3.WAKFIL).  The
 # simulator's phantom sends a frame a second after the suspend reached
-# its noirq phase ("inject_later suspend"), from a kernel timer that keeps
+# its noirq phase ("inject_later noirq"), from a kernel timer that keeps
 # running while tasks are frozen.  The guest has no cpuidle driver, so
 # suspend-to-idle idles the CPUs without freezing the tick: kernel
 # timers, the simulated bus's among them, still fire, and the frame
@@ -18,6 +18,12 @@
 #     sends it again and can0 receives that copy once it is back.
 #  2. can0 may not, can1 may: the same frame wakes the system through
 #     chip1's INT alone, chip0's is no wakeup interrupt.
+#  3. A frame while the devices are still suspending ("inject_later
+#     devices 0": chip0 is armed, its INT not yet a suspended wakeup
+#     interrupt): the driver reports the wake-up, so the system does not
+#     sleep with a chip that already woke and can wake nothing any more.
+#     Depending on when the driver's thread reports it, the PM core
+#     aborts the suspend (EBUSY) or leaves suspend-to-idle at once.
 # Nothing else in this rig wakes a suspend-to-idle (an RTC alarm does
 # not), so the case where no device may wake it would sleep for good.
 set -eu
@@ -90,7 +96,7 @@ cnf3=$(awk '$1 == "20:" { print $10 }' "$sim/chip0/regs")
 sleep_until_frame() {
 	read -r _ok_before </sys/power/suspend_stats/success
 	dmesg -c >/dev/null
-	echo "suspend 1000 7ff#$1" >"$sim/inject_later"
+	echo "noirq 1000 7ff#$1" >"$sim/inject_later"
 	read -r _t0 _ </proc/uptime
 	echo freeze >/sys/power/state || fail "suspend failed: $(dmesg | tail -n 5)"
 	read -r _t1 _ </proc/uptime
@@ -133,4 +139,26 @@ sleep_until_frame b2
 dmesg | grep -q "Triggering wakeup from IRQ $irq0" && fail "chip0's INT woke the system with its wakeup disabled"
 echo "wakeup irq $WAKE_IRQ (chip1's INT), none from chip0"
 back_to_normal 03
+
+echo "== a frame while the devices suspend: the system does not sleep"
+echo enabled >"$dev0/power/wakeup"
+echo disabled >"$dev1/power/wakeup"
+wake_count
+before=$WAKE_COUNT
+dmesg -c >/dev/null
+echo "devices 0 7ff#c1" >"$sim/inject_later"
+read -r t0 _ </proc/uptime
+if echo freeze >/sys/power/state 2>/tmp/freeze.err; then
+	outcome="suspend-to-idle left at once"
+else
+	outcome="suspend aborted: $(cat /tmp/freeze.err)"
+	grep -q 'busy' /tmp/freeze.err || fail "the suspend failed, but not with EBUSY"
+fi
+read -r t1 _ </proc/uptime
+echo "$outcome, after $(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.2f", b - a }') s"
+dmesg | grep -E 'PM: (suspend|resume|Some|Wakeup|last active|Triggering|noirq)|suspend-to-idle|abort' || true
+dmesg | grep -q 'Triggering wakeup from IRQ' && fail "a wakeup interrupt: the frame came too late for this case"
+wake_count
+[ "$WAKE_COUNT" -gt "$before" ] || fail "can0's wakeup events stayed at $WAKE_COUNT"
+back_to_normal 04
 echo "driver-wake: ok"
