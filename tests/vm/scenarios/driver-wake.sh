@@ -35,6 +35,10 @@ sim=/sys/kernel/debug/mcp2510-sim
 [ -w /sys/power/pm_debug_messages ] || fail "no /sys/power/pm_debug_messages (CONFIG_PM_SLEEP_DEBUG)"
 [ -r /sys/power/pm_wakeup_irq ] || fail "no /sys/power/pm_wakeup_irq (CONFIG_PM_SLEEP_DEBUG)"
 grep -qw freeze /sys/power/state || fail "no suspend-to-idle in /sys/power/state"
+# With a cpuidle driver, suspend-to-idle could freeze the tick, and the
+# simulator's timers, with it: the frame would never come.
+read -r idle </sys/devices/system/cpu/cpuidle/current_driver || idle=none
+[ "$idle" = none ] || fail "cpuidle driver $idle: suspend-to-idle may stop the simulated bus"
 
 dev0=/sys/class/net/can0/device
 dev1=/sys/class/net/can1/device
