@@ -105,6 +105,7 @@ struct mcp2510_priv {
 	bool powered;			/* vdd and oscillator on */
 	bool hw_running;		/* IRQ requested, chip started */
 	bool suspended_running;		/* the interface was up at suspend */
+	bool wake_armed;		/* asleep for wake-on-CAN, INT a wakeup irq */
 };
 
 /* spi.c: the core's transport and the chip lock */

@@ -178,6 +178,23 @@ static int mcp2510_setup_netdev(struct mcp2510_priv *priv,
 	return 0;
 }
 
+/*
+ * Wake-on-CAN: wakeup-source makes INT a wakeup interrupt (enabled by
+ * default, power/wakeup in sysfs turns it off); microchip,wakeup-filter
+ * sets CNF3.WAKFIL, which keeps short glitches on RXCAN (below about
+ * 50 ns, AN739) from waking the sleeping chip.
+ */
+static void mcp2510_setup_wakeup(struct mcp2510_priv *priv)
+{
+	struct device *dev = &priv->spi->dev;
+
+	mcp2510_wake_filter_set(&priv->chip,
+				device_property_read_bool(dev,
+							  "microchip,wakeup-filter"));
+	if (device_property_read_bool(dev, "wakeup-source"))
+		device_init_wakeup(dev, true);
+}
+
 static int mcp2510_probe(struct spi_device *spi)
 {
 	struct device *dev = &spi->dev;
@@ -229,17 +246,19 @@ static int mcp2510_probe(struct spi_device *spi)
 		dev_err(dev, "cannot add the gpiochip: %pe\n", ERR_PTR(ret));
 		goto out_power_off;
 	}
+	mcp2510_setup_wakeup(priv);
 	ret = register_candev(ndev);
 	if (ret) {
 		dev_err(dev, "cannot register the netdev: %pe\n", ERR_PTR(ret));
-		goto out_remove_gpio;
+		goto out_no_wakeup;
 	}
 
 	netdev_info(ndev, "%s, oscillator %u Hz, SPI %u Hz, irq %d\n",
 		    variant->name, osc_hz, spi->max_speed_hz, spi->irq);
 	return 0;
 
-out_remove_gpio:
+out_no_wakeup:
+	device_init_wakeup(dev, false);
 	mcp2510_gpio_unregister(priv);
 out_power_off:
 	mcp2510_power_off(priv);
@@ -256,6 +275,7 @@ static void mcp2510_remove(struct spi_device *spi)
 	struct net_device *ndev = priv->ndev;
 
 	unregister_candev(ndev);
+	device_init_wakeup(&spi->dev, false);
 	mcp2510_gpio_unregister(priv);
 	mcp2510_power_off(priv);
 	mcp2510_rx_del(priv);

@@ -176,6 +176,9 @@ check_params() (
 		case $prop in
 		@name)
 			got=${path##*/} ;;
+		@present)
+			got="(absent)"
+			fdtget "$merged" "$path" "$value" >/dev/null 2>&1 && got=$value ;;
 		@under)
 			under=$(resolve "$merged" "$value") || exit 1
 			got=$value

@@ -319,6 +319,7 @@ class Overlay:
             off = self.off(path)
             if as_bool(name, value):
                 self.fdt.setprop(off, m.group(1), b"")
+                self.expect.append(f"{self.merged_ref(path)} @present {m.group(1)}")
             elif m.group(1) in self.props(path):
                 self.fdt.delprop(off, m.group(1))
             return

@@ -174,3 +174,40 @@ int mcp2510_wake(struct mcp2510_chip *chip)
 		return err;
 	return mcp2510_reg_write(chip, MCP2510_REG_CANINTE, &chip->inte, 1);
 }
+
+void mcp2510_wake_filter_set(struct mcp2510_chip *chip, bool on)
+{
+	chip->wake_filter = on;
+}
+
+/*
+ * A WAKIF left from before would assert INT at once and read as a
+ * wake-up that never happened: clear it before enabling it.
+ */
+int mcp2510_wake_arm(struct mcp2510_chip *chip)
+{
+	const u8 inte = MCP2510_INT_WAK;
+	int err;
+
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_WAK, 0);
+	if (err)
+		return err;
+	err = mcp2510_reg_write(chip, MCP2510_REG_CANINTE, &inte, 1);
+	if (err)
+		return err;
+	return mcp2510_sleep(chip);
+}
+
+int mcp2510_wake_ack(struct mcp2510_chip *chip)
+{
+	u8 intf;
+	int err;
+
+	err = mcp2510_reg_read(chip, MCP2510_REG_CANINTF, &intf, 1);
+	if (err)
+		return err;
+	if (!(intf & MCP2510_INT_WAK))
+		return 0;
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_WAK, 0);
+	return err ? err : 1;
+}

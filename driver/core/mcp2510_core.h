@@ -169,6 +169,7 @@ struct mcp2510_chip {
 	u8 inte;			/* CANINTE in force */
 	u8 opmode;			/* MCP2510_MODE_* while started */
 	u32 bit_us;			/* one bit time, rounded up; 0: unknown */
+	bool wake_filter;		/* CNF3.WAKFIL at start */
 
 	/* Ordered transmit scheduler state (see tx.c). */
 	struct {
@@ -233,6 +234,18 @@ int mcp2510_hw_reset(struct mcp2510_chip *chip);
 int mcp2510_set_mode(struct mcp2510_chip *chip, u8 mode);
 int mcp2510_sleep(struct mcp2510_chip *chip);
 int mcp2510_wake(struct mcp2510_chip *chip);
+/*
+ * Wake-on-CAN.  mcp2510_wake_filter_set() chooses whether the next start
+ * sets CNF3.WAKFIL (glitches on RXCAN do not wake the chip).  After
+ * mcp2510_stop(), mcp2510_wake_arm() enables the wake-up interrupt alone
+ * and leaves the chip asleep: the next start of frame on the bus wakes
+ * it into listen-only mode (that frame is lost) and asserts INT.
+ * mcp2510_wake_ack() returns 1 and clears WAKIF when the chip woke, 0
+ * when it did not.  A start or restart programs the chip from scratch.
+ */
+void mcp2510_wake_filter_set(struct mcp2510_chip *chip, bool on);
+int mcp2510_wake_arm(struct mcp2510_chip *chip);
+int mcp2510_wake_ack(struct mcp2510_chip *chip);
 
 /* ---- bit timing ---- */
 /* Check @bt against the chip and AN739's rules and encode CNF1..CNF3. */

@@ -68,8 +68,10 @@ static u32 bit_time_us(const u8 cnf[3], u32 osc_hz)
 static int chip_program(struct mcp2510_chip *chip)
 {
 	/* CNF3, CNF2, CNF1 and CANINTE are adjacent: one WRITE */
-	const u8 regs[4] = { chip->cnf[2], chip->cnf[1], chip->cnf[0],
-			     chip->inte };
+	const u8 regs[4] = {
+		chip->cnf[2] | (chip->wake_filter ? MCP2510_CNF3_WAKFIL : 0),
+		chip->cnf[1], chip->cnf[0], chip->inte
+	};
 	u8 osm = chip->ctrlmode & CAN_CTRLMODE_ONE_SHOT ?
 		 MCP2515_CANCTRL_OSM : 0;
 	int err;

@@ -58,6 +58,8 @@ enum op {
 	OP_PIN_RTS,
 	OP_FILTERS,
 	OP_PEER_FRAME,
+	OP_WAKE_ARM,
+	OP_WAKE_ACK,
 	OP_GARBLE,
 	OP_COUNT
 };
@@ -448,6 +450,14 @@ static void run_op(struct hostile *h)
 		return;
 	case OP_PEER_FRAME:
 		do_peer_frame(h);
+		return;
+	case OP_WAKE_ARM:
+		/* the filter bit only reaches the chip at the next start */
+		mcp2510_wake_filter_set(&h->chip, fuzz_back_bool(&h->in));
+		CHECK_RESULT(mcp2510_wake_arm(&h->chip), 0, -ETIMEDOUT, -EIO);
+		return;
+	case OP_WAKE_ACK:
+		CHECK_RESULT(mcp2510_wake_ack(&h->chip), 0, 1, -EIO);
 		return;
 	default:
 		h->garble = 1 + fuzz_back_below(&h->in, 4);

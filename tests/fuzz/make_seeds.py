@@ -152,7 +152,7 @@ def sim_seeds():
 # ---- core_hostile (fuzz_core_hostile.c) ---------------------------------
 (H_HW_RESET, H_SET_MODE, H_START, H_STOP, H_RESTART, H_IRQ, H_IRQ2,
  H_TX_SUBMIT, H_SLEEP, H_WAKE, H_BERR, H_DUMP, H_PIN_BF, H_PIN_RTS,
- H_FILTERS, H_PEER, H_GARBLE) = range(17)
+ H_FILTERS, H_PEER, H_WAKE_ARM, H_WAKE_ACK, H_GARBLE) = range(19)
 MODEL_MCP2510, MODEL_MCP2515 = 0, 1
 MISO_INPUT, MISO_STUCK, MISO_MODEL = 0, 1, 2
 CORE_OSC_16M = 2
@@ -224,6 +224,13 @@ def core_seeds():
         s = CoreScript(MODEL_MCP2515, MISO_STUCK, fill=fill, edge=True)
         s.op(H_HW_RESET, H_SET_MODE).u8(MODE_NORMAL).op(H_IRQ, H_WAKE)
         write("core_hostile", "stuck-miso-%02x" % fill, s.bytes())
+
+    # wake-on-CAN: stop, arm (with WAKFIL asked for), a peer's frame
+    # wakes the chip, acknowledge, start again
+    s = CoreScript(MODEL_MCP2515, MISO_MODEL).start()
+    s.op(H_STOP, H_WAKE_ARM).u8(1).peer(0x123, [1]).op(H_WAKE_ACK, H_IRQ)
+    s.op(H_WAKE_ACK).start()
+    write("core_hostile", "model-wake-on-bus", s.bytes())
 
     s = CoreScript(MODEL_MCP2510, MISO_MODEL, fail_every=3).start()
     s.submit(0x7FF, [0xFF] * 8).op(H_IRQ, H_RESTART, H_IRQ, H_STOP)

@@ -18,6 +18,7 @@
 #include <linux/gpio/driver.h>
 #include <linux/hrtimer.h>
 #include <linux/irq_work.h>
+#include <linux/pm.h>
 #include <linux/property.h>
 #include <linux/spinlock.h>
 
@@ -94,11 +95,28 @@ struct mcp2510_sim {
 	u32 osc_hz;
 	unsigned int int_trigger;	/* IRQ_TYPE_* the chips' INT lines get */
 	bool gpio_controller;		/* the chips offer their pins as GPIOs */
-	struct property_entry props[3];	/* the chips' software node, terminated */
+	bool wakeup_source;		/* the chips' INT may wake the system */
+	bool wakeup_filter;		/* and their CNF3.WAKFIL is asked for */
+	struct property_entry props[5];	/* the chips' software node, terminated */
 	u8 spi_tx[MCP2510_SIM_SPI_BUF_LEN];
 	u8 spi_rx[MCP2510_SIM_SPI_BUF_LEN];
 
 	struct dentry *debugfs;
+	/* debugfs "inject_later": a phantom frame on a kernel timer */
+	struct hrtimer inject_timer;
+	struct can_frame inject_frame;	/* under lock */
+	u32 inject_bitrate;		/* under lock */
+	int inject_result;		/* under lock: sim_phantom_send()'s */
+	u8 inject_phase;		/* under lock: MCP2510_SIM_INJECT_* */
+	u32 inject_ms;			/* under lock */
+	struct dev_pm_domain pm_domain;	/* the root device's suspend */
+};
+
+/* When debugfs inject_later starts its timer. */
+enum {
+	MCP2510_SIM_INJECT_NOW,		/* at the write */
+	MCP2510_SIM_INJECT_DEVICES,	/* in the system suspend's devices phase */
+	MCP2510_SIM_INJECT_NOIRQ,	/* in its noirq phase */
 };
 
 /* kmod_clock.c */
@@ -148,6 +166,8 @@ int mcp2510_sim_frame_format(char *buf, size_t size, const struct can_frame *cf)
 /* kmod_debugfs_bus.c, kmod_debugfs_chip.c, kmod_debugfs_hostile.c */
 void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_remove(struct mcp2510_sim *sim);
+void mcp2510_sim_suspend_attach(struct mcp2510_sim *sim);
+void mcp2510_sim_suspend_detach(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				     struct dentry *parent);
 void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,

@@ -7,7 +7,9 @@
  */
 #include <linux/debugfs.h>
 #include <linux/fs.h>
+#include <linux/hrtimer.h>
 #include <linux/kernel.h>
+#include <linux/pm_domain.h>
 #include <linux/string.h>
 #include <linux/uaccess.h>
 
@@ -73,6 +75,150 @@ static const struct file_operations inject_fops = {
 	.owner = THIS_MODULE,
 	.open = simple_open,
 	.write = inject_write,
+};
+
+/*
+ * "[devices|noirq] MS FRAME [BITRATE]": the phantom sends FRAME MS
+ * milliseconds from now, on a kernel timer.  With "devices" the time
+ * counts from the next system suspend's devices phase (the simulator's
+ * root device suspends after the chips, so their drivers have prepared
+ * them; MS 0 sends the frame from within that callback), with "noirq"
+ * from its noirq phase (device interrupts suspended, wakeup interrupts
+ * armed).  The timer runs while the guest's tasks are frozen, so a
+ * scenario can put a frame on the bus in the middle of a suspend.  A new
+ * write replaces a frame not yet sent.
+ */
+static void inject_send(struct mcp2510_sim *sim)
+{
+	mcp2510_sim_lock(sim);
+	sim->inject_result = sim_phantom_send(&sim->bus, &sim->inject_frame,
+					      sim->inject_bitrate);
+	mcp2510_sim_unlock(sim);
+}
+
+static enum hrtimer_restart inject_timer_fired(struct hrtimer *timer)
+{
+	inject_send(container_of(timer, struct mcp2510_sim, inject_timer));
+	return HRTIMER_NORESTART;
+}
+
+static ssize_t inject_later_write(struct file *file, const char __user *ubuf,
+				  size_t len, loff_t *ppos)
+{
+	struct mcp2510_sim *sim = file_inode(file)->i_private;
+	char command[COMMAND_LEN], *cursor = command, *word, *frame;
+	u8 phase = MCP2510_SIM_INJECT_NOW;
+	struct can_frame cf;
+	u32 ms, bitrate;
+	int ret;
+
+	ret = read_command(ubuf, len, command, sizeof(command));
+	if (ret)
+		return ret;
+	word = next_word(&cursor);
+	if (word && !strcmp(word, "devices"))
+		phase = MCP2510_SIM_INJECT_DEVICES;
+	else if (word && !strcmp(word, "noirq"))
+		phase = MCP2510_SIM_INJECT_NOIRQ;
+	if (phase != MCP2510_SIM_INJECT_NOW)
+		word = next_word(&cursor);
+	if (!word || kstrtou32(word, 0, &ms))
+		return -EINVAL;
+	frame = next_word(&cursor);
+	if (!frame || mcp2510_sim_frame_parse(frame, &cf) ||
+	    parse_bitrate(next_word(&cursor), &bitrate) || next_word(&cursor))
+		return -EINVAL;
+
+	hrtimer_cancel(&sim->inject_timer);
+	mcp2510_sim_lock(sim);
+	sim->inject_frame = cf;
+	sim->inject_bitrate = bitrate;
+	sim->inject_result = 0;
+	sim->inject_ms = ms;
+	sim->inject_phase = phase;
+	mcp2510_sim_unlock(sim);
+	if (phase == MCP2510_SIM_INJECT_NOW)
+		hrtimer_start(&sim->inject_timer, ms_to_ktime(ms),
+			      HRTIMER_MODE_REL_SOFT);
+	return len;
+}
+
+static void inject_phase_reached(struct device *dev, u8 phase)
+{
+	struct mcp2510_sim *sim = dev_get_drvdata(dev);
+	bool start;
+	u32 ms;
+
+	mcp2510_sim_lock(sim);
+	start = sim->inject_phase == phase;
+	if (start)
+		sim->inject_phase = MCP2510_SIM_INJECT_NOW;
+	ms = sim->inject_ms;
+	mcp2510_sim_unlock(sim);
+	if (!start)
+		return;
+	if (ms) {
+		hrtimer_start(&sim->inject_timer, ms_to_ktime(ms),
+			      HRTIMER_MODE_REL_SOFT);
+		return;
+	}
+	inject_send(sim);
+	/* the start of frame goes out at the next advance: now */
+	mcp2510_sim_lock(sim);
+	mcp2510_sim_unlock(sim);
+}
+
+static int sim_suspend(struct device *dev)
+{
+	inject_phase_reached(dev, MCP2510_SIM_INJECT_DEVICES);
+	return 0;
+}
+
+static int sim_suspend_noirq(struct device *dev)
+{
+	inject_phase_reached(dev, MCP2510_SIM_INJECT_NOIRQ);
+	return 0;
+}
+
+void mcp2510_sim_suspend_attach(struct mcp2510_sim *sim)
+{
+	sim->pm_domain.ops.suspend = sim_suspend;
+	sim->pm_domain.ops.suspend_noirq = sim_suspend_noirq;
+	dev_set_drvdata(sim->root, sim);
+	dev_pm_domain_set(sim->root, &sim->pm_domain);
+}
+
+void mcp2510_sim_suspend_detach(struct mcp2510_sim *sim)
+{
+	dev_pm_domain_set(sim->root, NULL);
+}
+
+/* "pending", or "sent" with how sim_phantom_send() took the frame. */
+static ssize_t inject_later_read(struct file *file, char __user *ubuf,
+				 size_t len, loff_t *ppos)
+{
+	struct mcp2510_sim *sim = file_inode(file)->i_private;
+	char text[24];
+	int result, n;
+	bool armed;
+
+	mcp2510_sim_lock(sim);
+	armed = sim->inject_phase != MCP2510_SIM_INJECT_NOW;
+	result = sim->inject_result;
+	mcp2510_sim_unlock(sim);
+	if (armed || hrtimer_active(&sim->inject_timer))
+		n = scnprintf(text, sizeof(text), "pending\n");
+	else
+		n = scnprintf(text, sizeof(text), "sent %d\n", result);
+	return simple_read_from_buffer(ubuf, len, ppos, text, n);
+}
+
+static const struct file_operations inject_later_fops = {
+	.owner = THIS_MODULE,
+	.open = simple_open,
+	.read = inject_later_read,
+	.write = inject_later_write,
+	.llseek = default_llseek,
 };
 
 static ssize_t flood_write(struct file *file, const char __user *ubuf,
@@ -349,7 +495,10 @@ void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 	unsigned int n;
 
 	sim->debugfs = dir;
+	hrtimer_init(&sim->inject_timer, CLOCK_MONOTONIC, HRTIMER_MODE_REL_SOFT);
+	sim->inject_timer.function = inject_timer_fired;
 	debugfs_create_file("inject", 0200, dir, sim, &inject_fops);
+	debugfs_create_file("inject_later", 0600, dir, sim, &inject_later_fops);
 	debugfs_create_file("flood", 0600, dir, sim, &flood_fops);
 	debugfs_create_file("phantom", 0200, dir, sim, &phantom_fops);
 	debugfs_create_file("monitor", 0600, dir, sim, &mcp2510_sim_monitor_fops);
@@ -370,4 +519,5 @@ void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 void mcp2510_sim_debugfs_remove(struct mcp2510_sim *sim)
 {
 	debugfs_remove_recursive(sim->debugfs);
+	hrtimer_cancel(&sim->inject_timer);
 }

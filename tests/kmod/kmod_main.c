@@ -48,6 +48,14 @@ static bool gpio_controller;
 module_param(gpio_controller, bool, 0444);
 MODULE_PARM_DESC(gpio_controller, "give the SPI devices gpio-controller (default no)");
 
+static bool wakeup_source;
+module_param(wakeup_source, bool, 0444);
+MODULE_PARM_DESC(wakeup_source, "give the SPI devices wakeup-source (default no)");
+
+static bool wakeup_filter;
+module_param(wakeup_filter, bool, 0444);
+MODULE_PARM_DESC(wakeup_filter, "give the SPI devices microchip,wakeup-filter (default no)");
+
 static unsigned int seed = SIM_DEFAULT_SEED;
 module_param(seed, uint, 0444);
 MODULE_PARM_DESC(seed, "power-up garbage in the chips' buffers, filters and masks: chip n uses seed + n (default fixed)");
@@ -158,6 +166,8 @@ static struct mcp2510_sim *sim_create(void)
 	sim->osc_hz = osc_hz;
 	mcp2510_sim_trigger_parse(int_trigger, &sim->int_trigger);
 	sim->gpio_controller = gpio_controller;
+	sim->wakeup_source = wakeup_source;
+	sim->wakeup_filter = wakeup_filter;
 	ret = mcp2510_sim_of_find(sim);
 	if (ret)
 		goto out_free;
@@ -205,6 +215,7 @@ static int __init mcp2510_sim_init(void)
 		goto out_stop;
 
 	mcp2510_sim_debugfs_create(sim);
+	mcp2510_sim_suspend_attach(sim);
 	the_sim = sim;
 	return 0;
 
@@ -223,6 +234,7 @@ static void __exit mcp2510_sim_exit(void)
 {
 	struct mcp2510_sim *sim = the_sim;
 
+	mcp2510_sim_suspend_detach(sim);
 	mcp2510_sim_debugfs_remove(sim);
 	/* the drivers may still talk to their chips while they unbind */
 	mcp2510_sim_spi_unregister(sim);

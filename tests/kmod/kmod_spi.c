@@ -291,12 +291,16 @@ out_put:
 static int add_chip_devices(struct mcp2510_sim *sim, const char *driver,
 			    int spidev_node)
 {
-	unsigned int n;
+	unsigned int n, p = 0;
 	int ret;
 
-	sim->props[0] = PROPERTY_ENTRY_U32("clock-frequency", sim->osc_hz);
+	sim->props[p++] = PROPERTY_ENTRY_U32("clock-frequency", sim->osc_hz);
 	if (sim->gpio_controller)
-		sim->props[1] = PROPERTY_ENTRY_BOOL("gpio-controller");
+		sim->props[p++] = PROPERTY_ENTRY_BOOL("gpio-controller");
+	if (sim->wakeup_source)
+		sim->props[p++] = PROPERTY_ENTRY_BOOL("wakeup-source");
+	if (sim->wakeup_filter)
+		sim->props[p++] = PROPERTY_ENTRY_BOOL("microchip,wakeup-filter");
 	for (n = 0; n < sim->nchips; n++) {
 		ret = add_chip_device(&sim->chips[n],
 				      (int)n == spidev_node ? "spidev" : driver);

@@ -358,6 +358,69 @@ static void test_sleep_and_wake(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * Wake-on-CAN (DS21801 10.2, AN739 "Sleep Mode"): armed, the sleeping
+ * chip has WAKIE alone enabled, so only a wake-up asserts INT; the first
+ * start of frame on the bus wakes it into listen-only mode and the frame
+ * itself is lost.  A WAKIF left over from before does not count.  CNF3's
+ * WAKFIL, which both variants have (AN739 register 10), is set at start
+ * when asked for.
+ */
+static void test_wake_on_bus(void **state)
+{
+	enum mcp2510_model models[] = { MCP2510_MODEL_MCP2510,
+					MCP2510_MODEL_MCP2515 };
+	struct can_frame cf = ch_frame(0x123, 1, 0);
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		struct ch_rig *rig = ch_rig_new(2, models[i]);
+		struct ch_node *a = &rig->node[0], *b = &rig->node[1];
+
+		mcp2510_wake_filter_set(&a->core, true);
+		assert_int_equal(ch_start(a, 500000, 0), 0);
+		assert_int_equal(ch_start(b, 500000, 0), 0);
+		assert_true(sim_chip_peek(&a->sim, MCP2510_REG_CNF3) &
+			    MCP2510_CNF3_WAKFIL);
+		assert_false(sim_chip_peek(&b->sim, MCP2510_REG_CNF3) &
+			     MCP2510_CNF3_WAKFIL);
+
+		/* a WAKIF from before (set by SPI in sleep it would wake) */
+		assert_int_equal(mcp2510_reg_modify(&a->core,
+						    MCP2510_REG_CANINTF,
+						    MCP2510_INT_WAK,
+						    MCP2510_INT_WAK), 0);
+		assert_int_equal(mcp2510_stop(&a->core), 0);
+		assert_int_equal(mcp2510_wake_arm(&a->core), 0);
+		assert_int_equal(opmode(a), MCP2510_MODE_SLEEP);
+		assert_int_equal(sim_chip_peek(&a->sim, MCP2510_REG_CANINTE),
+				 MCP2510_INT_WAK);
+		assert_false(ch_int_asserted(a));
+		assert_int_equal(mcp2510_wake_ack(&a->core), 0);
+		ch_run(rig, 1 * MS);
+		assert_int_equal(opmode(a), MCP2510_MODE_SLEEP);
+
+		assert_true(mcp2510_tx_submit(&b->core, &cf) >= 0);
+		ch_run(rig, 1 * MS);
+		assert_true(ch_int_asserted(a));
+		assert_int_equal(opmode(a), MCP2510_MODE_LISTEN_ONLY);
+		assert_false(sim_chip_peek(&a->sim, MCP2510_REG_CANINTF) &
+			     MCP2510_INT_RX_ALL);
+		assert_int_equal(mcp2510_wake_ack(&a->core), 1);
+		assert_false(ch_int_asserted(a));
+		assert_int_equal(mcp2510_wake_ack(&a->core), 0);
+
+		/* resume: stop and start again, back in normal mode */
+		assert_int_equal(mcp2510_stop(&a->core), 0);
+		assert_int_equal(ch_start(a, 500000, 0), 0);
+		assert_int_equal(opmode(a), MCP2510_MODE_NORMAL);
+		assert_true(sim_chip_peek(&a->sim, MCP2510_REG_CNF3) &
+			    MCP2510_CNF3_WAKFIL);
+		ch_rig_free(rig);
+	}
+}
+
 static void test_transport_errors_are_eio(void **state)
 {
 	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2510);
@@ -470,6 +533,7 @@ int main(void)
 		cmocka_unit_test(test_start_times_out_on_a_stuck_mode),
 		cmocka_unit_test(test_stop_aborts_and_sleeps),
 		cmocka_unit_test(test_sleep_and_wake),
+		cmocka_unit_test(test_wake_on_bus),
 		cmocka_unit_test(test_transport_errors_are_eio),
 		cmocka_unit_test(test_register_access),
 		cmocka_unit_test(test_pins),
