@@ -90,6 +90,8 @@ struct mcp2510_priv {
 	unsigned int tx_fifo_len;
 	bool tx_loading;		/* the work holds a popped skb */
 	u8 tx_inflight;			/* bit n: TX buffer n holds a frame */
+	/* BQL: the length on the wire of the frame in TX buffer n */
+	unsigned int tx_bytes[MCP2510_TXB_COUNT];
 	struct work_struct tx_work;
 
 	/* sysfs acceptance filters, programmed into the chip on open */

@@ -235,6 +235,8 @@ static int mcp2510_open(struct net_device *ndev)
 		return ret;
 	}
 
+	/* Every frame of the last time up was completed; start afresh. */
+	netdev_reset_queue(ndev);
 	netif_start_queue(ndev);
 	return 0;
 }

@@ -138,7 +138,8 @@ static int mcp2510_get_resources(struct mcp2510_priv *priv,
 static u32 mcp2510_ctrlmodes(const struct mcp2510_variant *variant)
 {
 	u32 modes = CAN_CTRLMODE_LOOPBACK | CAN_CTRLMODE_LISTENONLY |
-		    CAN_CTRLMODE_3_SAMPLES | CAN_CTRLMODE_BERR_REPORTING;
+		    CAN_CTRLMODE_3_SAMPLES | CAN_CTRLMODE_BERR_REPORTING |
+		    CAN_CTRLMODE_CC_LEN8_DLC;
 
 	if (variant->has_one_shot)
 		modes |= CAN_CTRLMODE_ONE_SHOT;

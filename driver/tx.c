@@ -5,7 +5,15 @@
  * the TX work.  At most three frames are accepted and not yet finished
  * (queued plus loaded), one per hardware buffer: the queue stops exactly
  * when all three buffers are taken and wakes as soon as one frees.
+ *
+ * Byte queue limits: every frame start_xmit accepts is reported sent,
+ * with its length on the wire (can_skb_get_frame_len()), and every one
+ * is reported completed exactly once, however it ends: sent, aborted,
+ * dropped before it reached the chip or forgotten with a failed chip.
+ * The length of a frame in a TX buffer is kept beside the buffer, not in
+ * its echo skb, which can-dev may free or never have taken.
  */
+#include <linux/can/dev.h>
 #include <linux/can/skb.h>
 #include <linux/netdevice.h>
 
@@ -41,10 +49,11 @@ void mcp2510_tx_wake_queue(struct mcp2510_priv *priv)
 netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev)
 {
 	struct mcp2510_priv *priv = netdev_priv(ndev);
-	unsigned int tail;
+	unsigned int bytes, tail;
 
 	if (can_dev_dropped_skb(ndev, skb))
 		return NETDEV_TX_OK;
+	bytes = can_skb_get_frame_len(skb);
 
 	spin_lock(&priv->tx_lock);
 	if (mcp2510_tx_busy(priv) >= MCP2510_TXB_COUNT) {
@@ -57,6 +66,8 @@ netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev)
 	tail = (priv->tx_fifo_head + priv->tx_fifo_len) % MCP2510_TXB_COUNT;
 	priv->tx_fifo[tail] = skb;
 	priv->tx_fifo_len++;
+	/* Before the work can see the frame, so it is never completed first. */
+	netdev_sent_queue(ndev, bytes);
 	if (mcp2510_tx_busy(priv) == MCP2510_TXB_COUNT)
 		netif_stop_queue(ndev);
 	spin_unlock(&priv->tx_lock);
@@ -86,28 +97,49 @@ static struct sk_buff *mcp2510_tx_fifo_pop(struct mcp2510_priv *priv)
 	return skb;
 }
 
-/* A popped skb now sits in @slot, or in none when @slot is negative. */
-static void mcp2510_tx_loaded(struct mcp2510_priv *priv, int slot)
+/*
+ * A popped skb of @bytes on the wire now sits in @slot, or in none when
+ * @slot is negative: then it was dropped and has ended.
+ */
+static void mcp2510_tx_loaded(struct mcp2510_priv *priv, int slot,
+			      unsigned int bytes)
 {
 	spin_lock_bh(&priv->tx_lock);
 	priv->tx_loading = false;
-	if (slot >= 0)
+	if (slot >= 0) {
 		priv->tx_inflight |= BIT(slot);
-	else
+		priv->tx_bytes[slot] = bytes;
+	} else {
+		netdev_completed_queue(priv->ndev, 1, bytes);
 		mcp2510_tx_wake(priv);
+	}
 	spin_unlock_bh(&priv->tx_lock);
+}
+
+/*
+ * Under tx_lock.  The core may report a buffer that mcp2510_tx_forget()
+ * gave up already: its frame was completed then, not again.
+ */
+static void mcp2510_tx_slot_end(struct mcp2510_priv *priv, unsigned int slot)
+{
+	if (!(priv->tx_inflight & BIT(slot)))
+		return;
+	priv->tx_inflight &= ~BIT(slot);
+	netdev_completed_queue(priv->ndev, 1, priv->tx_bytes[slot]);
+	priv->tx_bytes[slot] = 0;
 }
 
 /* Called with the chip lock held, from the work or from an event. */
 void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot)
 {
 	spin_lock_bh(&priv->tx_lock);
-	priv->tx_inflight &= ~BIT(slot);
+	mcp2510_tx_slot_end(priv, slot);
 	mcp2510_tx_wake(priv);
 	spin_unlock_bh(&priv->tx_lock);
 }
 
-static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb)
+static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb,
+			   unsigned int bytes)
 {
 	const struct can_frame *cf = (const struct can_frame *)skb->data;
 	int slot;
@@ -120,7 +152,7 @@ static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb)
 	if (slot < 0)
 		return slot;
 
-	mcp2510_tx_loaded(priv, slot);
+	mcp2510_tx_loaded(priv, slot, bytes);
 	/*
 	 * The chip lock keeps the IRQ thread out until the echo skb is in
 	 * place, so a completion can never find the slot empty.
@@ -134,6 +166,7 @@ void mcp2510_tx_work(struct work_struct *work)
 	struct mcp2510_priv *priv = container_of(work, struct mcp2510_priv,
 						 tx_work);
 	struct sk_buff *skb;
+	unsigned int bytes;
 	int ret;
 
 	/*
@@ -141,8 +174,10 @@ void mcp2510_tx_work(struct work_struct *work)
 	 * tx_dropped is counted under the lock, as the events count it.
 	 */
 	while ((skb = mcp2510_tx_fifo_pop(priv))) {
+		/* Before the load: the echo may be gone once it is in place. */
+		bytes = can_skb_get_frame_len(skb);
 		mcp2510_lock(priv);
-		ret = mcp2510_tx_load(priv, skb);
+		ret = mcp2510_tx_load(priv, skb, bytes);
 		if (ret)
 			priv->ndev->stats.tx_dropped++;
 		mcp2510_unlock(priv);
@@ -152,7 +187,7 @@ void mcp2510_tx_work(struct work_struct *work)
 			netdev_err_once(priv->ndev, "loading a frame failed: %pe\n",
 					ERR_PTR(ret));
 		dev_kfree_skb(skb);
-		mcp2510_tx_loaded(priv, ret);
+		mcp2510_tx_loaded(priv, ret, bytes);
 	}
 }
 
@@ -163,20 +198,23 @@ void mcp2510_tx_work(struct work_struct *work)
 void mcp2510_tx_flush(struct mcp2510_priv *priv)
 {
 	struct sk_buff *skb;
+	unsigned int bytes;
 
 	while ((skb = mcp2510_tx_fifo_pop(priv))) {
+		bytes = can_skb_get_frame_len(skb);
 		dev_kfree_skb(skb);
 		mcp2510_lock(priv);
 		priv->ndev->stats.tx_dropped++;
 		mcp2510_unlock(priv);
-		mcp2510_tx_loaded(priv, -ENETDOWN);
+		mcp2510_tx_loaded(priv, -ENETDOWN, bytes);
 	}
 }
 
 /*
  * After the chip stopped, with the chip lock held: an echo skb still held
  * belongs to a frame the core could not abort (the SPI failed), and
- * nothing will ever complete it.
+ * nothing will ever complete it.  Nor will anything end a buffer still
+ * taken, with or without an echo skb: its frame is completed here.
  */
 void mcp2510_tx_forget(struct mcp2510_priv *priv)
 {
@@ -190,6 +228,7 @@ void mcp2510_tx_forget(struct mcp2510_priv *priv)
 		priv->ndev->stats.tx_dropped++;
 	}
 	spin_lock_bh(&priv->tx_lock);
-	priv->tx_inflight = 0;
+	for (slot = 0; slot < MCP2510_TXB_COUNT; slot++)
+		mcp2510_tx_slot_end(priv, slot);
 	spin_unlock_bh(&priv->tx_lock);
 }

@@ -3,6 +3,12 @@
  * struct can_frame <-> the SIDH..D7 registers of a transmit or receive
  * buffer.  Offsets below are relative to SIDH, the first byte the
  * MCP2515's buffer instructions transfer.
+ *
+ * The chip keeps the four DLC bits as written: a DLC of 9..15 goes on the
+ * wire as is, with eight data bytes, and a received one is stored as it
+ * came.  With CAN_CTRLMODE_CC_LEN8_DLC such a DLC travels in len8_dlc
+ * beside a length of 8; without it a sent frame's len8_dlc is ignored and
+ * a received DLC above 8 reads as length 8.
  */
 #include "mcp2510_core_priv.h"
 
@@ -30,7 +36,7 @@ static void id_encode(canid_t can_id, u8 *regs)
 	}
 }
 
-int mcp2510_frame_encode(const struct can_frame *cf, u8 *regs)
+int mcp2510_frame_encode(const struct can_frame *cf, u32 ctrlmode, u8 *regs)
 {
 	bool rtr = cf->can_id & CAN_RTR_FLAG;
 	unsigned int ndata = rtr ? 0 : cf->len;
@@ -38,12 +44,13 @@ int mcp2510_frame_encode(const struct can_frame *cf, u8 *regs)
 	if (cf->len > CAN_MAX_DLEN)
 		return -EINVAL;
 	id_encode(cf->can_id, regs);
-	regs[REG(MCP2510_BUF_DLC)] = cf->len | (rtr ? MCP2510_DLC_RTR : 0);
+	regs[REG(MCP2510_BUF_DLC)] = can_get_cc_dlc(cf, ctrlmode) |
+				     (rtr ? MCP2510_DLC_RTR : 0);
 	memcpy(regs + REG(MCP2510_BUF_D0), cf->data, ndata);
 	return REG(MCP2510_BUF_D0) + ndata;
 }
 
-void mcp2510_frame_decode(const u8 *regs, struct can_frame *cf)
+void mcp2510_frame_decode(const u8 *regs, u32 ctrlmode, struct can_frame *cf)
 {
 	u8 sidl = regs[REG(MCP2510_BUF_SIDL)];
 	u8 dlc = regs[REG(MCP2510_BUF_DLC)];
@@ -64,9 +71,7 @@ void mcp2510_frame_decode(const u8 *regs, struct can_frame *cf)
 		rtr = sidl & MCP2510_SIDL_SRR;
 	}
 	/* DLC 9..15 means eight bytes on the wire; never read past D7 */
-	cf->len = dlc & MCP2510_DLC_MASK;
-	if (cf->len > CAN_MAX_DLEN)
-		cf->len = CAN_MAX_DLEN;
+	can_frame_set_cc_len(cf, dlc & MCP2510_DLC_MASK, ctrlmode);
 	if (rtr)
 		cf->can_id |= CAN_RTR_FLAG;
 	else

@@ -181,7 +181,7 @@ static int rxb_recover(struct mcp2510_chip *chip, unsigned int n,
 		return err;
 	if (intf_rx[2] & MCP2510_INT_RX(n))
 		return 0;
-	mcp2510_frame_decode(rx + 2, cf);
+	mcp2510_frame_decode(rx + 2, chip->ctrlmode, cf);
 	/* later than a READ STATUS in the message would be, but close */
 	chip->irq.rx1_first = !n && intf_rx[2] & MCP2510_INT_RX(1);
 	return 1;
@@ -230,7 +230,7 @@ static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
 		chip->irq.rx1_first = false;
 	else
 		chip->irq.rx1_first = status_rx[1] & MCP2510_STATUS_RX1IF;
-	mcp2510_frame_decode(rx + hdr, &cf);
+	mcp2510_frame_decode(rx + hdr, chip->ctrlmode, &cf);
 	if (chip->events->rx)
 		chip->events->rx(chip->ctx, &cf);
 	return 0;

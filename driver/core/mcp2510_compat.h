@@ -20,6 +20,9 @@
 #include <linux/can.h>
 #include <linux/can/error.h>
 #include <linux/can/netlink.h>
+/* 6.1's length.h includes nothing and names sk_buff in a prototype. */
+struct sk_buff;
+#include <linux/can/length.h>
 
 #else /* userspace */
 
@@ -65,6 +68,29 @@ static inline u64 mcp2510_div_round_up(u64 x, u64 d)
 #ifndef fallthrough
 #define fallthrough		__attribute__((__fallthrough__))
 #endif
+
+/*
+ * The kernel's Classical CAN raw-DLC helpers (<linux/can/length.h>), which
+ * no uapi header offers.  The DLC of a frame: len8_dlc when the mode is on,
+ * the length is 8 and len8_dlc is a DLC above 8, else the length.
+ */
+static inline u8 can_get_cc_dlc(const struct can_frame *cf, u32 ctrlmode)
+{
+	if ((ctrlmode & CAN_CTRLMODE_CC_LEN8_DLC) &&
+	    cf->len == CAN_MAX_DLEN && cf->len8_dlc > CAN_MAX_DLEN &&
+	    cf->len8_dlc <= CAN_MAX_RAW_DLC)
+		return cf->len8_dlc;
+	return cf->len;
+}
+
+/* Length from a received DLC (0..15), keeping a DLC above 8 if asked. */
+static inline void can_frame_set_cc_len(struct can_frame *cf, u8 dlc,
+					u32 ctrlmode)
+{
+	if ((ctrlmode & CAN_CTRLMODE_CC_LEN8_DLC) && dlc > CAN_MAX_DLEN)
+		cf->len8_dlc = dlc;
+	cf->len = dlc > CAN_MAX_DLEN ? CAN_MAX_DLEN : dlc;
+}
 
 #endif /* __KERNEL__ */
 

@@ -202,11 +202,16 @@ int mcp2510_init(struct mcp2510_chip *chip, const struct mcp2510_variant *v,
 /*
  * Encode @cf into SIDH..D7 (@regs holds MCP2510_FRAME_REGS bytes); returns
  * how many of them carry the frame (5 + data bytes): the rest need not be
- * sent.  -EINVAL for a length above 8.
+ * sent.  -EINVAL for a length above 8.  With CAN_CTRLMODE_CC_LEN8_DLC in
+ * @ctrlmode a length of 8 goes out with len8_dlc (9..15) as its DLC.
  */
-int mcp2510_frame_encode(const struct can_frame *cf, u8 *regs);
-/* Decode SIDH..D7; a DLC above 8 is clamped, RTR frames carry no data. */
-void mcp2510_frame_decode(const u8 *regs, struct can_frame *cf);
+int mcp2510_frame_encode(const struct can_frame *cf, u32 ctrlmode, u8 *regs);
+/*
+ * Decode SIDH..D7; a DLC above 8 gives length 8, and with
+ * CAN_CTRLMODE_CC_LEN8_DLC in @ctrlmode also len8_dlc.  RTR frames carry
+ * no data.
+ */
+void mcp2510_frame_decode(const u8 *regs, u32 ctrlmode, struct can_frame *cf);
 /* SIDH, SIDL, EID8, EID0 of a filter (EXIDE for extended) or of a mask. */
 void mcp2510_filter_id_encode(const struct mcp2510_filter_id *id,
 			      bool is_mask, u8 regs[MCP2510_ID_LEN]);

@@ -9,7 +9,8 @@
 				 CAN_CTRLMODE_LISTENONLY | \
 				 CAN_CTRLMODE_3_SAMPLES | \
 				 CAN_CTRLMODE_ONE_SHOT | \
-				 CAN_CTRLMODE_BERR_REPORTING)
+				 CAN_CTRLMODE_BERR_REPORTING | \
+				 CAN_CTRLMODE_CC_LEN8_DLC)
 
 int mcp2510_init(struct mcp2510_chip *chip, const struct mcp2510_variant *v,
 		 u32 osc_hz, const struct mcp2510_ops *ops,

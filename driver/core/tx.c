@@ -312,7 +312,7 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf)
 		return -ENETDOWN;
 	if (chip->tx.busy == SLOTS_ALL)
 		return -EBUSY;
-	nregs = mcp2510_frame_encode(cf, regs);
+	nregs = mcp2510_frame_encode(cf, chip->ctrlmode, regs);
 	if (nregs < 0)
 		return nregs;
 	if (!tx_unused(chip)) {

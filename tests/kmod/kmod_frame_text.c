@@ -5,6 +5,7 @@
  *   12345678#11.22   extended identifier: exactly 8 hex digits
  *   123#             no data
  *   123#R  123#R4    remote frame, optionally with its length
+ *   123#1122334455667788_E   eight bytes sent with the raw DLC 0xE (9..F)
  * Data bytes are two hex digits each, optionally separated by '.'.
  * The same syntax in and out, so what a test injects it can grep for in
  * the bus monitor.
@@ -53,6 +54,17 @@ static int parse_remote(const char *text, struct can_frame *cf)
 	return 0;
 }
 
+/* "_X" after eight data bytes: the DLC on the wire is X, 9..F. */
+static int parse_raw_dlc(const char *text, struct can_frame *cf)
+{
+	int dlc = hex_to_bin(text[0]);
+
+	if (cf->len != CAN_MAX_DLEN || dlc <= CAN_MAX_DLEN || text[1])
+		return -EINVAL;
+	cf->len8_dlc = dlc;
+	return 0;
+}
+
 static int parse_data(const char *text, struct can_frame *cf)
 {
 	int hi, lo;
@@ -62,6 +74,8 @@ static int parse_data(const char *text, struct can_frame *cf)
 			text++;
 			continue;
 		}
+		if (*text == '_')
+			return parse_raw_dlc(text + 1, cf);
 		if (cf->len == CAN_MAX_DLEN)
 			return -EINVAL;
 		hi = hex_to_bin(text[0]);
@@ -112,5 +126,8 @@ int mcp2510_sim_frame_format(char *buf, size_t size, const struct can_frame *cf)
 	}
 	for (i = 0; i < cf->len && i < CAN_MAX_DLEN; i++)
 		n += scnprintf(buf + n, size - n, "%02X", cf->data[i]);
+	if (cf->len == CAN_MAX_DLEN && cf->len8_dlc > CAN_MAX_DLEN &&
+	    cf->len8_dlc <= CAN_MAX_RAW_DLC)
+		n += scnprintf(buf + n, size - n, "_%X", cf->len8_dlc);
 	return n;
 }

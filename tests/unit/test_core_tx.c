@@ -237,6 +237,48 @@ static void test_three_frames_keep_their_order(void **state)
 }
 
 /*
+ * cc-len8-dlc through two chips, on both models (plain READ and READ RX
+ * BUFFER): the sender's mode decides the DLC on the wire, the receiver's
+ * whether a DLC above 8 reaches it as len8_dlc.
+ */
+static void test_raw_dlc_through_chips(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	static const struct {
+		u32 tx_mode, rx_mode;
+		u8 len8_dlc;	/* what the receiver gets */
+	} cases[] = {
+		{ CAN_CTRLMODE_CC_LEN8_DLC, CAN_CTRLMODE_CC_LEN8_DLC, 14 },
+		{ CAN_CTRLMODE_CC_LEN8_DLC, 0, 0 },
+		{ 0, CAN_CTRLMODE_CC_LEN8_DLC, 0 },
+	};
+	unsigned int m, c;
+
+	(void)state;
+	for (m = 0; m < ARRAY_SIZE(models); m++) {
+		for (c = 0; c < ARRAY_SIZE(cases); c++) {
+			struct ch_rig *rig = ch_rig_new(2, models[m]);
+			struct ch_node *tx = &rig->node[0], *rx = &rig->node[1];
+			struct can_frame cf = ch_frame(0x123, 8, c);
+
+			cf.len8_dlc = 14;
+			assert_int_equal(ch_start(tx, BITRATE, cases[c].tx_mode), 0);
+			assert_int_equal(ch_start(rx, BITRATE, cases[c].rx_mode), 0);
+			assert_true(mcp2510_tx_submit(&tx->core, &cf) >= 0);
+			ch_run_idle(rig, 10 * MS);
+			assert_int_equal(tx->ev.tx_done_count, 1);
+			assert_int_equal(rx->ev.rx_count, 1);
+			assert_int_equal(rx->ev.rx[0].len, 8);
+			assert_int_equal(rx->ev.rx[0].len8_dlc, cases[c].len8_dlc);
+			assert_memory_equal(rx->ev.rx[0].data, cf.data, 8);
+			ch_rig_free(rig);
+		}
+	}
+}
+
+/*
  * Requests made within one bit of a start of frame contend together
  * (tests/sim/README.md): three frames submitted back to back over a timed
  * SPI bus, all within the first bit of the first one's start of frame,
@@ -526,6 +568,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_three_frames_keep_their_order),
+		cmocka_unit_test(test_raw_dlc_through_chips),
 		cmocka_unit_test(test_frames_within_a_bit_keep_their_order),
 		cmocka_unit_test(test_first_frames_ignore_power_up_garbage),
 		cmocka_unit_test(test_idle_submit_and_completion_cost),

@@ -193,6 +193,51 @@ static void test_exchange_all_frame_kinds(void **state)
 			 sim_chip_counters(&r->chip[1])->frames_rx);
 }
 
+/*
+ * DS21291/DS21801 TXBnDLC: a DLC above 8 is sent as written, with eight
+ * data bytes, and the receiver's RXBnDLC holds it as it came.  The bus
+ * monitor sees the raw DLC (len8_dlc) and the frame lasts as long as an
+ * 8-byte frame with that DLC.
+ */
+static void test_raw_dlc_above_8(void **state)
+{
+	struct rig *r = *state;
+	u8 data[8] = { 0x11, 0x22, 0x33, 0x44, 0x55, 0x66, 0x77, 0x88 };
+	static const canid_t ids[] = { 0x123, CAN_EFF_FLAG | 0x1abcdef5 };
+	unsigned int i, dlc, round = 0;
+
+	for (i = 0; i < ARRAY_SIZE(ids); i++) {
+		for (dlc = 9; dlc <= 15; dlc++, round++) {
+			struct sim_chip *tx = &r->chip[round & 1];
+			struct sim_chip *rx = &r->chip[!(round & 1)];
+			struct can_frame cf = simh_frame(ids[i], 8, data), got;
+			const struct sim_bus_record *rec;
+			u8 buf[MCP2510_BUF_LEN];
+
+			simh_load_tx(tx, 0, &cf);
+			simh_write(tx, MCP2510_REG_TXB(0) + MCP2510_BUF_DLC, dlc);
+			simh_rts(tx, MCP2510_RTS_TXB(0));
+			simh_run_idle(&r->bus, 10 * MS);
+			assert_int_equal(r->log.count, round + 1);
+			rec = simh_log_get(&r->log, round);
+			assert_true(rec->acked);
+			assert_int_equal(rec->frame.len, 8);
+			assert_int_equal(rec->frame.len8_dlc, dlc);
+			cf.len8_dlc = dlc;
+			assert_int_equal(rec->bits, sim_frame_bits(&cf));
+			assert_int_equal(rec->end_ns - rec->start_ns,
+					 (u64)rec->bits * BIT_NS_125K);
+
+			simh_read_seq(rx, MCP2510_REG_RXB(0), buf, sizeof(buf));
+			assert_int_equal(buf[MCP2510_BUF_DLC] & MCP2510_DLC_MASK,
+					 dlc);
+			assert_memory_equal(&buf[MCP2510_BUF_D0], data, 8);
+			simh_read_rx(rx, 0, &got, true);
+			assert_true(simh_frame_equal(&cf, &got));
+		}
+	}
+}
+
 static void expect_order(const struct rig *r, unsigned int first,
 			 const canid_t *ids, unsigned int n)
 {
@@ -790,6 +835,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_an739_minimal_configuration),
 		cmocka_unit_test_setup_teardown(test_exchange_all_frame_kinds, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_raw_dlc_above_8, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_arbitration_three_chips, setup_three, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_arbitration_frame_types, setup_three, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_arbitration_window, setup_three, simh_teardown),
