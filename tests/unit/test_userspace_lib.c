@@ -147,6 +147,34 @@ static void test_ctrlmodes_by_variant(void **state)
 	mcp2510_close(b);
 }
 
+/* cc-len8-dlc: a DLC of 9..15 goes out as written and comes back. */
+static void test_raw_dlc(void **state)
+{
+	struct mcp2510 *a = open_up("sim:dlc", CAN_CTRLMODE_CC_LEN8_DLC);
+	struct mcp2510 *b = open_up("sim:dlc", CAN_CTRLMODE_CC_LEN8_DLC);
+	struct mcp2510 *c = open_up("sim:dlc", 0);
+	struct can_frame cf = frame(0x123, 8, 1), got;
+
+	(void)state;
+	cf.len8_dlc = 14;
+	assert_int_equal(mcp2510_send(a, &cf, 0), 0);
+	got = next_event(b, MCP2510_EVENT_RX).frame;
+	assert_same_frame(&got, &cf);
+	assert_int_equal(got.len8_dlc, 14);
+	/* without the mode the DLC reads as 8 */
+	got = next_event(c, MCP2510_EVENT_RX).frame;
+	assert_same_frame(&got, &cf);
+	assert_int_equal(got.len8_dlc, 0);
+	/* and a sender without it sends 8 */
+	assert_int_equal(mcp2510_send(c, &cf, 0), 0);
+	got = next_event(b, MCP2510_EVENT_RX).frame;
+	assert_int_equal(got.len, 8);
+	assert_int_equal(got.len8_dlc, 0);
+	mcp2510_close(a);
+	mcp2510_close(b);
+	mcp2510_close(c);
+}
+
 static void test_running_rules(void **state)
 {
 	struct can_frame cf = frame(0x10, 1, 0);
@@ -631,6 +659,7 @@ int main(void)
 		cmocka_unit_test(test_open_and_bittiming),
 		cmocka_unit_test(test_explicit_bittiming),
 		cmocka_unit_test(test_ctrlmodes_by_variant),
+		cmocka_unit_test(test_raw_dlc),
 		cmocka_unit_test(test_running_rules),
 		cmocka_unit_test(test_two_nodes_exchange_in_order),
 		cmocka_unit_test(test_loopback_returns_frames),
