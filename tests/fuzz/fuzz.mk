@@ -3,7 +3,7 @@
 #   make fuzz                   run every target for FUZZ_SECONDS (60) each
 #   make fuzz FUZZ_SECONDS=600  longer
 #   make fuzz-<target>          one target, e.g. make fuzz-sim_spi
-#   make fuzz-smoke             every target for FUZZ_SMOKE_SECONDS (10):
+#   make fuzz-smoke             every target for FUZZ_SMOKE_SECONDS (5):
 #                               a make check step
 #   make fuzz-build             only build them
 #
@@ -25,7 +25,7 @@ FUZZ_OUT := $(BUILD)/fuzz
 FUZZ_CC := clang
 FUZZ_PACKAGES := clang libclang-rt-14-dev
 FUZZ_SECONDS ?= 60
-FUZZ_SMOKE_SECONDS := 10
+FUZZ_SMOKE_SECONDS := 5
 FUZZ_SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all \
 		 -fno-omit-frame-pointer
 FUZZ_CFLAGS := $(CSTD) $(WARN) -g -O1 $(FUZZ_SANITIZE) \

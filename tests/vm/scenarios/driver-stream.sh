@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=40 --timeout 300
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.1 6.12
 # Long streams through mcp2510.ko at 500 kbit/s: 10,000 frames can0 ->
 # can1, then floods both ways at once (can0 sends standard, can1 extended
 # identifiers).  The driver loses nothing, keeps the order exactly, and
