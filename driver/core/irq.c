@@ -262,6 +262,53 @@ static int rx_take(struct mcp2510_chip *chip, u8 intf)
 	return 0;
 }
 
+#define EFLG_RXOVR_ALL	(MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR)
+
+/*
+ * Whether RXB1 can only hold a frame that came after the one in RXB0 or
+ * the one released from it: rollover on, and RXB0 taking every frame, so
+ * that no frame goes to RXB1 while RXB0 is free.  RXB0 takes every frame
+ * when it ignores its filters, or when its mask is 0 and its two filters
+ * name both formats (a filter matches only its own format).
+ */
+static bool rx_order_known(const struct mcp2510_chip *chip)
+{
+	const struct mcp2510_filters *f = &chip->filters;
+
+	if (!f->rollover)
+		return false;
+	if (f->rxm[0] == MCP2510_RXM_ANY)
+		return true;
+	return f->rxm[0] == MCP2510_RXM_FILTERED && !f->mask[0].id &&
+	       f->filter[0].ext != f->filter[1].ext;
+}
+
+/*
+ * Whether the first frame this pass delivers was in the chip at every
+ * moment INT was asserted since the previous pass (see rx_pass in
+ * mcp2510_core.h).  Only passes clear flags, so a flag that asserted INT
+ * then is among @f.  When every flag in @f is a receive flag, a full
+ * buffer asserted it, and the oldest frame held now was held then.  An
+ * overflow counts as a receive flag: it needs both buffers full.  It
+ * shows as ERRIF, which also reports a worse error state; EFLG telling
+ * the state already known rules that out.
+ */
+static bool rx_first_waited(const struct mcp2510_chip *chip,
+			    const struct irq_flags *f)
+{
+	u8 rx = f->intf & MCP2510_INT_RX_ALL;
+	u8 other = f->intf & ~MCP2510_INT_RX_ALL;
+
+	if (!rx || chip->irq.flags_cleared)
+		return false;
+	if (other == MCP2510_INT_ERR && f->full && f->eflg & EFLG_RXOVR_ALL &&
+	    mcp2510_error_eflg_state(f->eflg) == chip->state)
+		other = 0;
+	if (other)
+		return false;
+	return rx != MCP2510_INT_RX_ALL || rx_order_known(chip);
+}
+
 /* Returns the CANINTF bits to clear. */
 static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 {
@@ -293,8 +340,6 @@ static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 			clear |= MCP2510_INT_TX(n);
 	return clear;
 }
-
-#define EFLG_RXOVR_ALL	(MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR)
 
 /*
  * Clear ERRIF, then read the EFLG the state is taken from, then TEC/REC to
@@ -435,6 +480,9 @@ static int irq_pass(struct mcp2510_chip *chip)
 	err = flags_read(chip, &f);
 	if (err)
 		return err;
+	if (chip->events->rx_pass)
+		chip->events->rx_pass(chip->ctx, rx_first_waited(chip, &f));
+	chip->irq.flags_cleared = false;
 	err = rx_take(chip, f.intf);
 	if (err)
 		return err;
