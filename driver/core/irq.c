@@ -262,8 +262,6 @@ static int rx_take(struct mcp2510_chip *chip, u8 intf)
 	return 0;
 }
 
-#define EFLG_RXOVR_ALL	(MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR)
-
 /*
  * Whether RXB1 can only hold a frame that came after the one in RXB0 or
  * the one released from it: rollover on, and RXB0 taking every frame, so
@@ -288,23 +286,18 @@ static bool rx_order_known(const struct mcp2510_chip *chip)
  * moment INT was asserted since the previous pass (see rx_pass in
  * mcp2510_core.h).  Only passes clear flags, so a flag that asserted INT
  * then is among @f.  When every flag in @f is a receive flag, a full
- * buffer asserted it, and the oldest frame held now was held then.  An
- * overflow counts as a receive flag: it needs both buffers full.  It
- * shows as ERRIF, which also reports a worse error state; EFLG telling
- * the state already known rules that out.
+ * buffer asserted it, and the oldest frame held now was held then.  The
+ * ERRIF of an overflow is no receive flag: it outlives the full buffers.
+ * A pass that released both, not seeing the overflow's ERRIF (READ
+ * STATUS does not show it), leaves INT asserted with both buffers free,
+ * and the frames the next pass finds came after INT fired.
  */
 static bool rx_first_waited(const struct mcp2510_chip *chip,
 			    const struct irq_flags *f)
 {
 	u8 rx = f->intf & MCP2510_INT_RX_ALL;
-	u8 other = f->intf & ~MCP2510_INT_RX_ALL;
 
-	if (!rx || chip->irq.flags_cleared)
-		return false;
-	if (other == MCP2510_INT_ERR && f->full && f->eflg & EFLG_RXOVR_ALL &&
-	    mcp2510_error_eflg_state(f->eflg) == chip->state)
-		other = 0;
-	if (other)
+	if (!rx || rx != f->intf || chip->irq.flags_cleared)
 		return false;
 	return rx != MCP2510_INT_RX_ALL || rx_order_known(chip);
 }
@@ -340,6 +333,8 @@ static u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 			clear |= MCP2510_INT_TX(n);
 	return clear;
 }
+
+#define EFLG_RXOVR_ALL	(MCP2510_EFLG_RX0OVR | MCP2510_EFLG_RX1OVR)
 
 /*
  * Clear ERRIF, then read the EFLG the state is taken from, then TEC/REC to
