@@ -621,6 +621,53 @@ static void test_rx_stamp_errif(void **state)
 	ch_rig_free(rig);
 }
 
+/* Two frames arrive (the second overflowing) after the first transfer. */
+static bool overflow_sent;
+
+static void overflow_after_first_xfer(struct ch_node *node)
+{
+	unsigned int i;
+
+	if (overflow_sent)
+		return;
+	overflow_sent = true;
+	for (i = 0; i < 2; i++) {
+		struct can_frame cf = ch_frame(0x200 + i, 8, i);
+
+		assert_int_equal(sim_phantom_send(&node->rig->bus, &cf, 0), 0);
+	}
+	sim_bus_advance(&node->rig->bus, 2 * FRAME_NS);
+}
+
+/*
+ * The overflow's ERRIF unseen by READ STATUS: a pass sees RXB0 alone,
+ * then RXB1 fills and a frame overflows while it reads.  The next pass
+ * takes RXB1 (rightly stamped: it waited) and leaves INT asserted by the
+ * ERRIF alone; a frame arriving then came after INT fired, and the pass
+ * that finds it must see the ERRIF.
+ */
+static void test_rx_stamp_unseen_overflow(void **state)
+{
+	struct ch_rig *rig = stamp_rig(MCP2510_MODEL_MCP2515, true);
+	struct ch_node *node = &rig->node[0];
+
+	(void)state;
+	arrive_unserviced(rig, 0x100, 1);
+	overflow_sent = false;
+	node->after_xfer = overflow_after_first_xfer;
+	assert_true(next_pass_waited(node));
+	node->after_xfer = NULL;
+	assert_int_equal(node->ev.rx_count, 2);
+	assert_true(next_pass_waited(node));	/* RXB1, there all along */
+	assert_int_equal(node->ev.rx_count, 3);
+	assert_int_equal(sim_chip_counters(&node->sim)->overflows, 1);
+	assert_true(ch_int_asserted(node));	/* ERRIF */
+	arrive_unserviced(rig, 0x300, 1);
+	assert_false(next_pass_waited(node));
+	assert_int_equal(node->ev.rx_count, 4);
+	ch_rig_free(rig);
+}
+
 /* After a restart (a reset) the first pass cannot tell. */
 static void test_rx_stamp_not_after_reset(void **state)
 {
@@ -656,6 +703,7 @@ int main(void)
 		cmocka_unit_test(test_rx_stamp_order_unknown),
 		cmocka_unit_test(test_rx_stamp_not_with_tx),
 		cmocka_unit_test(test_rx_stamp_errif),
+		cmocka_unit_test(test_rx_stamp_unseen_overflow),
 		cmocka_unit_test(test_rx_stamp_not_after_reset),
 	};
 

