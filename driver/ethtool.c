@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * ethtool: driver identity and the register dump laid out in the uapi
- * header.  Timestamps are the stack's software ones: the chip has no
- * clock to stamp frames with.
+ * header.  Timestamps are software ones, from the host's clock: the
+ * chip has none.  Received frames carry the time INT fired where that is
+ * known to be after their end of frame (rx.c), sent frames what can-dev
+ * stamps at transmit; so software stamping is what is offered, hardware
+ * stamping is not.
  */
 #include <linux/ethtool.h>
 #include <linux/netdevice.h>

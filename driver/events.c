@@ -12,6 +12,8 @@
 static void mcp2510_event_rx(void *ctx, const struct can_frame *frame)
 {
 	struct mcp2510_priv *priv = ctx;
+	/* taken even for a frame dropped here: it is that frame's */
+	ktime_t ts = mcp2510_rx_stamp_frame(priv);
 	struct can_frame *cf;
 	struct sk_buff *skb;
 
@@ -21,6 +23,7 @@ static void mcp2510_event_rx(void *ctx, const struct can_frame *frame)
 		return;
 	}
 	*cf = *frame;
+	skb->tstamp = ts;
 	/* rx_packets and rx_bytes are counted once it is queued. */
 	mcp2510_rx_queue(priv, skb);
 }
@@ -113,7 +116,13 @@ static void mcp2510_event_error(void *ctx, const struct can_frame *frame)
 	if (!skb)
 		return;
 	*cf = *frame;
+	skb->tstamp = mcp2510_rx_stamp_event(priv);
 	mcp2510_rx_queue(priv, skb);
+}
+
+static void mcp2510_event_rx_pass(void *ctx, bool first_waited)
+{
+	mcp2510_rx_pass(ctx, first_waited);
 }
 
 const struct mcp2510_events mcp2510_netdev_events = {
@@ -122,4 +131,5 @@ const struct mcp2510_events mcp2510_netdev_events = {
 	.tx_aborted = mcp2510_event_tx_aborted,
 	.state = mcp2510_event_state,
 	.error = mcp2510_event_error,
+	.rx_pass = mcp2510_event_rx_pass,
 };

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * The INT pin.  Every interrupt is handled in a thread because reading
- * the chip takes SPI transfers that sleep; there is no hard handler and
- * the line stays masked (IRQF_ONESHOT) until the thread is done.
+ * the chip takes SPI transfers that sleep; the hard handler only notes
+ * the time, for receive timestamps, and the line stays masked
+ * (IRQF_ONESHOT) until the thread is done.
  */
 #include <linux/interrupt.h>
 #include <linux/irq.h>
@@ -54,6 +55,18 @@ static bool mcp2510_irq_storm(struct mcp2510_priv *priv, int handled)
 	w->empty_irqs = 0;
 	mcp2510_watch_storm(priv);
 	return true;
+}
+
+/*
+ * INT fired: the frame that asserted it has ended on the bus.  The
+ * thread may run much later (scheduling, and SPI reads before the frame
+ * is queued), so the time is taken here; rx.c decides which frame may
+ * carry it.
+ */
+irqreturn_t mcp2510_irq_hard(int irq, void *data)
+{
+	mcp2510_rx_stamp_irq(data);
+	return IRQ_WAKE_THREAD;
 }
 
 irqreturn_t mcp2510_irq_thread(int irq, void *data)

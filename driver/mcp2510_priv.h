@@ -10,6 +10,8 @@
 
 #include <linux/can/dev.h>
 #include <linux/can/rx-offload.h>
+#include <linux/atomic.h>
+#include <linux/ktime.h>
 #include <linux/skbuff.h>
 #include <linux/gpio/driver.h>
 #include <linux/mutex.h>
@@ -58,6 +60,11 @@ struct mcp2510_priv {
 	/* received frames queued for the stack, under lock (rx.c) */
 	unsigned long rx_packets;
 	unsigned long rx_bytes;
+	/* receive timestamps (rx.c) */
+	atomic64_t rx_irq_ns;		/* INT fired, CLOCK_REALTIME; 0: none */
+	ktime_t rx_first_ts;		/* for the next frame of the pass */
+	ktime_t rx_pass_ts;		/* for the pass's later ones */
+	bool rx_in_pass;		/* between rx_pass and the unlock */
 	struct net_device *ndev;
 	struct spi_device *spi;
 	struct regulator *vdd;
@@ -124,6 +131,10 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb);
 unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 				   unsigned int slot);
 void mcp2510_rx_flush(struct mcp2510_priv *priv);
+void mcp2510_rx_stamp_irq(struct mcp2510_priv *priv);
+void mcp2510_rx_pass(struct mcp2510_priv *priv, bool first_waited);
+ktime_t mcp2510_rx_stamp_frame(struct mcp2510_priv *priv);
+ktime_t mcp2510_rx_stamp_event(struct mcp2510_priv *priv);
 void mcp2510_get_stats64(struct net_device *ndev,
 			 struct rtnl_link_stats64 *stats);
 void mcp2510_rx_disable(struct mcp2510_priv *priv);
@@ -148,6 +159,7 @@ void mcp2510_tx_wake_queue(struct mcp2510_priv *priv);
 void mcp2510_tx_forget(struct mcp2510_priv *priv);
 
 /* irq.c */
+irqreturn_t mcp2510_irq_hard(int irq, void *data);
 irqreturn_t mcp2510_irq_thread(int irq, void *data);
 unsigned long mcp2510_irq_trigger(struct mcp2510_priv *priv);
 

@@ -83,7 +83,8 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 	 * triggered line an INT asserted during start would otherwise never
 	 * be seen again.  It waits for the chip lock until start is done.
 	 */
-	ret = request_threaded_irq(priv->spi->irq, NULL, mcp2510_irq_thread,
+	ret = request_threaded_irq(priv->spi->irq, mcp2510_irq_hard,
+				   mcp2510_irq_thread,
 				   priv->irq_flags | IRQF_ONESHOT,
 				   dev_name(&priv->spi->dev), priv);
 	if (ret)

@@ -13,6 +13,26 @@
  * rx-offload's poll counts every frame it delivers as received, echoes
  * included; echoes are the driver's sent traffic, so the interface
  * reports the driver's own count of received frames instead.
+ *
+ * Receive timestamps.  The stack would stamp a frame when NAPI hands it
+ * on, after the thread was scheduled and read the chip; the time INT
+ * fired is much closer to the end of the frame.  It is a time no frame
+ * read later may carry, though: one that came after INT fired would be
+ * stamped before it ended.  The rule, where "now" is taken in each pass
+ * of the interrupt loop right after it read the flags:
+ * - the first frame of a pass gets the time INT fired when the core
+ *   says that frame was in the chip whenever INT was asserted since the
+ *   pass before (rx_pass), and INT fired since that pass;
+ * - every other frame, and every frame of a pass with no such
+ *   interrupt (a later pass of an edge-triggered loop, polling), gets
+ *   that pass's "now": it was in the chip when the flags were read;
+ * - error frames found by a pass get its "now" too.
+ * So no frame is stamped before it ended, and stamps never decrease in
+ * the order frames are queued: the queue, in the chip's order, is in
+ * timestamp order without sorting it.  The stamps are the host's clock
+ * (CLOCK_REALTIME in skb->tstamp, what SO_TIMESTAMP and software receive
+ * stamping read), not the chip's: the chip has none.  Echoes keep the
+ * stack's own stamp.
  */
 #include <linux/can/dev.h>
 #include <linux/can/rx-offload.h>
@@ -56,6 +76,7 @@ static void mcp2510_offload_echo(struct can_rx_offload *offload,
 /* Before the first use of the chip lock: unlocking hands frames on. */
 int mcp2510_rx_init(struct mcp2510_priv *priv)
 {
+	atomic64_set(&priv->rx_irq_ns, 0);
 	return can_rx_offload_add_manual(priv->ndev, &priv->offload,
 					 NAPI_POLL_WEIGHT);
 }
@@ -107,7 +128,53 @@ unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 void mcp2510_rx_flush(struct mcp2510_priv *priv)
 {
 	lockdep_assert_held(&priv->lock);
+	priv->rx_in_pass = false;
 	can_rx_offload_threaded_irq_finish(&priv->offload);
+}
+
+/*
+ * Hard IRQ context.  On an edge-triggered line this may run while a pass
+ * is under way; the latest time is the one to keep (see rx_pass in
+ * mcp2510_core.h: it is about INT being asserted since the last pass).
+ */
+void mcp2510_rx_stamp_irq(struct mcp2510_priv *priv)
+{
+	atomic64_set(&priv->rx_irq_ns, ktime_to_ns(ktime_get_real()));
+}
+
+/* The core's rx_pass: a pass read the flags (see the top of the file). */
+void mcp2510_rx_pass(struct mcp2510_priv *priv, bool first_waited)
+{
+	ktime_t now = ktime_get_real();
+	s64 irq_ns = atomic64_xchg(&priv->rx_irq_ns, 0);
+
+	lockdep_assert_held(&priv->lock);
+	priv->rx_pass_ts = now;
+	priv->rx_first_ts = now;
+	/* a clock set back in between would make the INT time the later */
+	if (first_waited && irq_ns && irq_ns <= ktime_to_ns(now))
+		priv->rx_first_ts = ns_to_ktime(irq_ns);
+	priv->rx_in_pass = true;
+}
+
+/* The timestamp of the next received frame. */
+ktime_t mcp2510_rx_stamp_frame(struct mcp2510_priv *priv)
+{
+	ktime_t ts;
+
+	lockdep_assert_held(&priv->lock);
+	if (!priv->rx_in_pass)
+		return ktime_get_real();
+	ts = priv->rx_first_ts;
+	priv->rx_first_ts = priv->rx_pass_ts;
+	return ts;
+}
+
+/* The timestamp of an error frame. */
+ktime_t mcp2510_rx_stamp_event(struct mcp2510_priv *priv)
+{
+	lockdep_assert_held(&priv->lock);
+	return priv->rx_in_pass ? priv->rx_pass_ts : ktime_get_real();
 }
 
 void mcp2510_get_stats64(struct net_device *ndev,

@@ -77,6 +77,7 @@ int mcp2510_hw_reset(struct mcp2510_chip *chip)
 			return err;
 		if (reset_values_ok(chip, regs)) {
 			mcp2510_tx_reset(chip);
+			chip->irq.flags_cleared = true;
 			return 0;
 		}
 		if (waited >= RESET_TIMEOUT_US)
@@ -172,6 +173,7 @@ int mcp2510_wake(struct mcp2510_chip *chip)
 	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_WAK, 0);
 	if (err)
 		return err;
+	chip->irq.flags_cleared = true;
 	return mcp2510_reg_write(chip, MCP2510_REG_CANINTE, &chip->inte, 1);
 }
 

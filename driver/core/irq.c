@@ -8,9 +8,10 @@
  * ERRIF, WAKIF or MERRF, so the pass reads CANINTF and EFLG instead (4
  * bytes, same transfer count) when READ STATUS shows nothing although INT
  * fired, every MCP2510_IRQ_FULL_READ_EVERY passes so an RX flood cannot
- * starve error reporting, after both RX buffers were seen full (an
- * overflow may follow), and while the chip is not error-active (so that a
- * recovery from bus-off is seen at the next interrupt of any kind).
+ * starve error reporting, after both RX buffers were seen full or, with
+ * rollover, RXB1 was taken (an overflow may follow), and while the chip
+ * is not error-active (so that a recovery from bus-off is seen at the
+ * next interrupt of any kind).
  *
  * TX, error and wake-up flags are cleared with one BIT MODIFY naming only
  * the flags handled, so a flag raised meanwhile survives and asserts INT
@@ -248,7 +249,14 @@ static int rx_take(struct mcp2510_chip *chip, u8 intf)
 	unsigned int i;
 	int err;
 
-	if ((intf & MCP2510_INT_RX_ALL) == MCP2510_INT_RX_ALL)
+	/*
+	 * Both full: an overflow may follow.  With rollover RXB1 only fills
+	 * while RXB0 is full, so taking it says the same even when this
+	 * pass saw RXB0 empty: the overflow may have come meanwhile, its
+	 * ERRIF unseen by READ STATUS (and rx_first_waited() relies on that).
+	 */
+	if ((intf & MCP2510_INT_RX_ALL) == MCP2510_INT_RX_ALL ||
+	    (chip->filters.rollover && intf & MCP2510_INT_RX(1)))
 		chip->irq.full_read_next = true;
 	for (i = 0; i < MCP2510_RXB_COUNT; i++) {
 		unsigned int n = i ? !first : first;
@@ -260,6 +268,49 @@ static int rx_take(struct mcp2510_chip *chip, u8 intf)
 			return err;
 	}
 	return 0;
+}
+
+/*
+ * With rollover on: whether RXB1 can only hold a frame that came after
+ * the one in RXB0 or the one released from it: RXB0 taking every frame,
+ * so that no frame goes to RXB1 while RXB0 is free.  RXB0 takes every frame
+ * when it ignores its filters, or when its mask is 0 and its two filters
+ * name both formats (a filter matches only its own format).
+ */
+static bool rx_order_known(const struct mcp2510_chip *chip)
+{
+	const struct mcp2510_filters *f = &chip->filters;
+
+	if (f->rxm[0] == MCP2510_RXM_ANY)
+		return true;
+	return f->rxm[0] == MCP2510_RXM_FILTERED && !f->mask[0].id &&
+	       f->filter[0].ext != f->filter[1].ext;
+}
+
+/*
+ * Whether the first frame this pass delivers was in the chip at every
+ * moment INT was asserted since the previous pass (see rx_pass in
+ * mcp2510_core.h).  Only passes clear flags, so a flag that asserted INT
+ * then is among @f.  When every flag in @f is a receive flag, a full
+ * buffer asserted it, and the oldest frame held now was held then.  The
+ * ERRIF of an overflow is no receive flag: it outlives the full buffers.
+ * A pass that released both, not seeing the overflow's ERRIF (READ
+ * STATUS does not show it), leaves INT asserted with both buffers free,
+ * and the frames the next pass finds came after INT fired.  So the pass
+ * after one that may have missed an overflow reads CANINTF (rx_take()):
+ * with rollover every overflow happens while RXB1 is full, and the pass
+ * that takes RXB1 has the next one read CANINTF.  Without rollover RXB0
+ * overflows alone, which no pass can tell from READ STATUS.
+ */
+static bool rx_first_waited(const struct mcp2510_chip *chip,
+			    const struct irq_flags *f)
+{
+	u8 rx = f->intf & MCP2510_INT_RX_ALL;
+
+	if (!rx || rx != f->intf || chip->irq.flags_cleared ||
+	    !chip->filters.rollover)
+		return false;
+	return rx != MCP2510_INT_RX_ALL || rx_order_known(chip);
 }
 
 /* Returns the CANINTF bits to clear. */
@@ -435,6 +486,9 @@ static int irq_pass(struct mcp2510_chip *chip)
 	err = flags_read(chip, &f);
 	if (err)
 		return err;
+	if (chip->events->rx_pass)
+		chip->events->rx_pass(chip->ctx, rx_first_waited(chip, &f));
+	chip->irq.flags_cleared = false;
 	err = rx_take(chip, f.intf);
 	if (err)
 		return err;

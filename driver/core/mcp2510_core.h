@@ -93,6 +93,23 @@ struct mcp2510_events {
 	 * which statistics to count.
 	 */
 	void (*error)(void *ctx, const struct can_frame *cf);
+	/*
+	 * Optional, for receive timestamps: a pass of mcp2510_irq_handle()
+	 * has read the interrupt flags, and the frames it found follow,
+	 * oldest first; each of them ended on the bus before this call.
+	 * @first_waited: the first of them was already in the chip at every
+	 * moment INT was asserted since the previous pass, so the time INT
+	 * fired is after its end of frame too.  False when a flag other than
+	 * a receive flag was set (an overflow's ERRIF included), without
+	 * rollover, when the order of two full buffers cannot be known (see
+	 * irq.c), and in the first pass after a reset or a wake-up cleared
+	 * flags outside the loop.  A pass that reads READ STATUS alone cannot
+	 * see ERRIF, MERRF or WAKIF; after a possible overflow the next pass
+	 * reads them, but an error state change or a bus error raised since
+	 * the last full read may have asserted INT before the frame came
+	 * (irq.c reads them every few passes).
+	 */
+	void (*rx_pass)(void *ctx, bool first_waited);
 };
 
 /* The two masks, six filters and receive modes (see the uapi header). */
@@ -189,6 +206,7 @@ struct mcp2510_chip {
 		u8 passes_to_full_read;	/* countdown to reading CANINTF/EFLG */
 		bool full_read_next;	/* both RX buffers were full */
 		bool rx1_first;		/* RXB1 holds the older frame */
+		bool flags_cleared;	/* by a reset or wake-up: see rx_pass */
 	} irq;
 };
 

@@ -32,7 +32,7 @@ BENCH_PACKAGES := gnuplot-nox python3
 .PHONY: bench
 bench: vm-kernel-6.1
 	@$(ENSURE) $(BENCH_PACKAGES)
-	@$(MAKE) --no-print-directory modules-rig userspace VM_KERNELS=6.1
+	@$(MAKE) --no-print-directory modules-rig userspace vm-guest-tools VM_KERNELS=6.1
 	@BENCH_OUT=$(BENCH_OUT) BENCH_PROFILES="$(BENCH_PROFILES)" \
 		BENCH_FRAMES=$(BENCH_FRAMES) \
 		BENCH_CPU_FRAMES=$(BENCH_CPU_FRAMES) \

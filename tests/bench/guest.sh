@@ -189,6 +189,36 @@ tx() {
 		"$(counters) $(monitor_timing)"
 }
 
+# rxts BITRATE COUNT: the phantom floods COUNT frames (at most 256: the
+# monitor) to can0 while can-tstamp (tests/vm/guest) takes them with their
+# receive timestamps; reports how far after each frame's end on the bus
+# its stamp lies (ns of real time: nearest-rank median, 99th percentile,
+# maximum), and how many frames were stamped or not found on the bus.
+rxts() {
+	start_at "$1"
+	: >/tmp/rxts.txt
+	can-tstamp can0 "$2" "$SIM/monitor_times" >>/tmp/rxts.txt &
+	_pid=$!
+	wait_for 20 rxts_ready || fail "can-tstamp never listened"
+	cpu_mark
+	echo "$2 $FLOOD_FRAME $1" >"$SIM/flood"
+	wait "$_pid" || fail "can-tstamp failed"
+	report rxts "bitrate=$1 frames=$2 $(rxts_figures)"
+}
+rxts_ready() { read -r _l </tmp/rxts.txt && [ "$_l" = ready ]; }
+rxts_figures() {
+	sed 1d /tmp/rxts.txt | awk '$2 == "missing" { m++; next } { print $2 }
+		END { print "missing", m + 0 > "/tmp/rxts.missing" }' |
+		sort -n | awk '{ e[NR] = $1 } END {
+		n = NR
+		p50 = n ? e[int((n + 1) / 2)] : 0
+		i = int(n * 0.99); if (i < n * 0.99) i++
+		p99 = n ? e[i] : 0
+		printf "stamped=%d err_p50_ns=%d err_p99_ns=%d err_max_ns=%d", n, p50, p99, n ? e[n] : 0 }'
+	read -r _ _m </tmp/rxts.missing
+	echo " missing=$_m"
+}
+
 # From chip 0's frames in the monitor (the last 256): how many, their mean
 # length in bits, the span from the first start to the last start, the
 # idle time between them, all in bus nanoseconds.
@@ -222,6 +252,8 @@ can_up can0 "$CPU_BITRATE"
 again idle "$(burst_seconds "$CPU_FRAMES" "$CPU_BITRATE")"
 again rx cpu-rx "$CPU_BITRATE" "$CPU_FRAMES"
 again tx cpu-tx "$CPU_BITRATE" "$CPU_FRAMES"
+# receive timestamps against the bus's end of frame, at the same bit rate
+again rxts "$CPU_BITRATE" "$FRAMES"
 if [ "${RX_SEARCH:-0}" = 1 ]; then
 	rx_search
 else

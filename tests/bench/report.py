@@ -100,6 +100,7 @@ def driver_figures(log):
         "cpu_us_per_frame": cpu_us_per_frame(rx, idle, rx["received"]),
         "tx_cpu_us_per_frame": cpu_us_per_frame(tx, idle, tx["frames_tx"]),
         "cpu_burst_loss": round(1 - rx["received"] / rx["frames"], 4),
+        "rx_timestamp_error_us": rx_timestamp_error(log, log["setup"][0]["time_scale"]),
         "tx_bus_utilisation": {},
         "tx_idle_us_per_gap": {},
         "rx_loss": {},
@@ -142,6 +143,24 @@ def last_by_bitrate(runs):
     return sorted({r["bitrate"]: r for r in runs}.values(), key=lambda r: r["bitrate"])
 
 
+def rx_timestamp_error(log, scale):
+    """How far receive timestamps lie after the end of frame on the bus,
+    in microseconds of bus time (real time over time_scale, as a board
+    would see it), from the last rxts run; None for a log without one."""
+    runs = log.get("rxts")
+    if not runs:
+        return None
+    run = runs[-1]
+    return {
+        "p50": round(run["err_p50_ns"] / 1e3 / scale, 2),
+        "p99": round(run["err_p99_ns"] / 1e3 / scale, 2),
+        "max": round(run["err_max_ns"] / 1e3 / scale, 2),
+        "frames": int(run["stamped"]),
+        "not_on_bus": int(run["missing"]),
+        "bitrate": int(run["bitrate"]),
+    }
+
+
 def profile_figures(log):
     """One driver on one chip with SPI time on (a board profile).  The
     guest repeats a measurement across which the bus clock stalled; the
@@ -153,13 +172,14 @@ def profile_figures(log):
     tx = log["cpu-tx"][-1]
     floods = last_by_bitrate(log.get("rx", []))
     bursts = last_by_bitrate(log.get("tx", []))
-    kept = [idle, rx, tx] + floods + bursts
+    kept = [idle, rx, tx] + floods + bursts + log.get("rxts", [])[-1:]
     boot_stalls = int(log["done"][0].get("clock_stalls", 0) - setup.get("clock_stalls", 0))
     if all("stalls" in k for k in kept):
         stalls = int(sum(k["stalls"] for k in kept))
     else:
         stalls = boot_stalls
-    tries = sum(len(log.get(w, [])) for w in ("idle", "cpu-rx", "cpu-tx", "rx", "tx"))
+    tries = sum(len(log.get(w, []))
+                for w in ("idle", "cpu-rx", "cpu-tx", "rx", "tx", "rxts"))
     cpu = cpu_us_per_frame(rx, idle, rx["received"])
     scale = setup["time_scale"]
     fig = {
@@ -181,6 +201,7 @@ def profile_figures(log):
         "cpu_us_per_rx_frame_bound_over_time_scale":
             per_frame(rx["busy_cs"] * 1e4 / scale, rx["received"]),
         "cpu_burst_loss": round(1 - rx["received"] / rx["frames"], 4),
+        "rx_timestamp_error_us": rx_timestamp_error(log, scale),
         "clock_stalls": stalls,
         "clock_stalls_boot": boot_stalls,
         "measurements_repeated": tries - len(kept),
@@ -391,7 +412,24 @@ def profile_tables(profiles):
                            f" ({fmt(f['cpu_us_per_rx_frame_bound_over_time_scale'])})"
                            f" | {stalls} |")
         out.append("")
+        out += rx_timestamp_table(entry)
     return out
+
+
+def rx_timestamp_table(entry):
+    """Receive timestamp error per driver and chip, when measured."""
+    figs = [(d, c, entry[d][c].get("rx_timestamp_error_us")) for d in DRIVERS for c in CHIPS]
+    if not any(f for _, _, f in figs):
+        return []
+    out = ["Receive timestamp after the end of frame on the bus (µs of bus time,"
+           " a flood at the per-frame cost bit rate):", "",
+           "| driver | chip | median | 99th percentile | frames |", "|---|---|---|---|---|"]
+    for driver, chip, f in figs:
+        if f:
+            out.append(f"| {driver} | {chip} | {fmt(f['p50'])} | {fmt(f['p99'])} | {f['frames']} |")
+        else:
+            out.append(f"| {driver} | {chip} | - | - | - |")
+    return out + [""]
 
 
 def write_plot_data(out, summary):

@@ -57,6 +57,9 @@ struct mcp2510_sim_chip {
 
 struct mcp2510_sim_monitor {
 	struct sim_bus_record ring[MCP2510_SIM_MONITOR_LEN];
+	/* per record, CLOCK_REALTIME ns: end_ns on the bus; when modelled */
+	u64 end_real_ns[MCP2510_SIM_MONITOR_LEN];
+	u64 seen_real_ns[MCP2510_SIM_MONITOR_LEN];
 	u64 written;		/* records ever written */
 	u64 cleared;		/* records before this are not shown */
 };
@@ -158,6 +161,7 @@ void mcp2510_sim_spi_unregister(struct mcp2510_sim *sim);
 /* kmod_monitor.c */
 void mcp2510_sim_monitor_attach(struct mcp2510_sim *sim);
 extern const struct file_operations mcp2510_sim_monitor_fops;
+extern const struct file_operations mcp2510_sim_monitor_times_fops;
 
 /* kmod_frame_text.c */
 int mcp2510_sim_frame_parse(const char *text, struct can_frame *cf);

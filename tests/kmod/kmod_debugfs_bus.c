@@ -502,6 +502,8 @@ void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 	debugfs_create_file("flood", 0600, dir, sim, &flood_fops);
 	debugfs_create_file("phantom", 0200, dir, sim, &phantom_fops);
 	debugfs_create_file("monitor", 0600, dir, sim, &mcp2510_sim_monitor_fops);
+	debugfs_create_file("monitor_times", 0400, dir, sim,
+			    &mcp2510_sim_monitor_times_fops);
 	debugfs_create_file_unsafe("bus_errors", 0600, dir, sim, &bus_errors_fops);
 	debugfs_create_file_unsafe("no_ack", 0600, dir, sim, &no_ack_fops);
 	debugfs_create_file_unsafe("time_ns", 0400, dir, sim, &time_ns_fops);

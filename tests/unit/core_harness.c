@@ -153,12 +153,22 @@ static void ch_ev_error(void *ctx, const struct can_frame *cf)
 	node->ev.error[node->ev.error_count++ % CH_LOG_MAX] = *cf;
 }
 
+static void ch_ev_rx_pass(void *ctx, bool first_waited)
+{
+	struct ch_node *node = ctx;
+	unsigned int n = node->ev.pass_count++ % CH_LOG_MAX;
+
+	node->ev.pass[n].rx_before = node->ev.rx_count;
+	node->ev.pass[n].first_waited = first_waited;
+}
+
 static const struct mcp2510_events ch_events = {
 	.rx = ch_ev_rx,
 	.tx_done = ch_ev_tx_done,
 	.tx_aborted = ch_ev_tx_aborted,
 	.state = ch_ev_state,
 	.error = ch_ev_error,
+	.rx_pass = ch_ev_rx_pass,
 };
 
 struct ch_rig *ch_rig_new(unsigned int n, enum mcp2510_model model)

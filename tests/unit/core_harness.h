@@ -32,6 +32,12 @@ struct ch_events {
 	unsigned int state_count;
 	struct can_frame error[CH_LOG_MAX];
 	unsigned int error_count;
+	/* rx_pass: frames received before it, and what it said */
+	struct {
+		unsigned int rx_before;
+		bool first_waited;
+	} pass[CH_LOG_MAX];
+	unsigned int pass_count;
 	/* optional per-test hooks, called after recording */
 	void (*on_rx)(struct ch_node *node, const struct can_frame *cf);
 	void (*on_tx_done)(struct ch_node *node, unsigned int slot);

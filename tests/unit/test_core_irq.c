@@ -499,6 +499,190 @@ static void test_mcp2515_rx_status(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * Receive timestamps (rx_pass): what the pass that takes the next frames
+ * says of the first of them.  The first pass after start follows the
+ * reset that cleared the flags, so it says nothing: serve one frame
+ * first.
+ */
+static bool next_pass_waited(struct ch_node *node)
+{
+	unsigned int before = node->ev.pass_count;
+
+	assert_true(mcp2510_irq_handle(&node->core) > 0);
+	assert_true(node->ev.pass_count > before);
+	return node->ev.pass[before % CH_LOG_MAX].first_waited;
+}
+
+static struct ch_rig *stamp_rig(enum mcp2510_model model, bool rollover)
+{
+	struct ch_rig *rig = rx_rig(model, rollover);
+	struct ch_node *node = &rig->node[0];
+
+	arrive_unserviced(rig, 0x080, 1);
+	assert_false(next_pass_waited(node));	/* after the reset */
+	assert_int_equal(node->ev.rx_count, 1);
+	return rig;
+}
+
+static void test_rx_stamp_frames_alone(void **state)
+{
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(both_models); i++) {
+		struct ch_rig *rig = stamp_rig(both_models[i], true);
+		struct ch_node *node = &rig->node[0];
+		unsigned int last;
+
+		arrive_unserviced(rig, 0x100, 1);
+		assert_true(next_pass_waited(node));
+		/* both buffers, the older known: rollover, RXB0 takes all */
+		arrive_unserviced(rig, 0x200, 2);
+		assert_true(next_pass_waited(node));
+		last = (node->ev.pass_count - 1) % CH_LOG_MAX;
+		assert_int_equal(node->ev.pass[last].rx_before, 2);
+		assert_int_equal(node->ev.rx[2].can_id, 0x200);
+		ch_rig_free(rig);
+	}
+}
+
+/*
+ * RXB0 taking only 0x100 and RXB1 everything: 0x200 goes straight to
+ * RXB1 while RXB0 is free, so either buffer may hold the older frame.
+ */
+static void test_rx_stamp_order_unknown(void **state)
+{
+	struct ch_rig *rig = ch_rig_new(1, MCP2510_MODEL_MCP2515);
+	struct ch_node *node = &rig->node[0];
+	struct mcp2510_filters f;
+
+	(void)state;
+	mcp2510_filters_default(&f);
+	f.mask[0].id = 0x7ff;
+	f.filter[0].id = 0x100;
+	assert_int_equal(mcp2510_filters_apply(&node->core, &f), 0);
+	assert_int_equal(ch_start(node, BITRATE, 0), 0);
+	sim_phantom_attach(&rig->bus, 0);
+	arrive_unserviced(rig, 0x100, 1);
+	assert_false(next_pass_waited(node));	/* after the reset */
+	arrive_unserviced(rig, 0x200, 1);
+	assert_true(next_pass_waited(node));	/* one frame: no order */
+	arrive_unserviced(rig, 0x200, 1);
+	arrive_unserviced(rig, 0x100, 1);
+	assert_false(next_pass_waited(node));
+	assert_int_equal(node->ev.rx_count, 4);
+	ch_rig_free(rig);
+}
+
+/* A sent frame may have asserted INT before the received one came. */
+static void test_rx_stamp_not_with_tx(void **state)
+{
+	struct ch_rig *rig = stamp_rig(MCP2510_MODEL_MCP2510, true);
+	struct ch_node *node = &rig->node[0];
+	struct can_frame cf = ch_frame(0x7f0, 2, 0);
+
+	(void)state;
+	assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+	sim_bus_advance(&rig->bus, FRAME_NS);
+	arrive_unserviced(rig, 0x400, 1);
+	assert_false(next_pass_waited(node));
+	assert_int_equal(node->ev.tx_done_count, 1);
+	ch_rig_free(rig);
+}
+
+/*
+ * An overflow's ERRIF outlives the full buffers: a pass that takes both
+ * from READ STATUS leaves it set, INT stays asserted with both buffers
+ * free, and frames that come next came after INT fired.  The pass that
+ * finds them with the ERRIF cannot vouch for them.  Nor with an ERRIF
+ * of a state change.
+ */
+static void test_rx_stamp_errif(void **state)
+{
+	struct ch_rig *rig = stamp_rig(MCP2510_MODEL_MCP2515, true);
+	struct ch_node *node = &rig->node[0];
+
+	(void)state;
+	arrive_unserviced(rig, 0x100, 3);
+	assert_true(next_pass_waited(node));	/* READ STATUS: both full */
+	assert_int_equal(node->ev.rx_count, 3);
+	assert_true(ch_int_asserted(node));	/* the overflow's ERRIF */
+	arrive_unserviced(rig, 0x200, 1);
+	assert_false(next_pass_waited(node));
+	assert_int_equal(node->core.counters.rx_overflows, 1);
+	assert_int_equal(node->ev.rx_count, 4);
+
+	ch_service(node, 8, NULL);
+	arrive_unserviced(rig, 0x300, 1);
+	set_errif(node);
+	node->core.irq.full_read_next = true;
+	assert_false(next_pass_waited(node));
+	ch_rig_free(rig);
+}
+
+/* Two frames arrive (the second overflowing) after the first transfer. */
+static bool overflow_sent;
+
+static void overflow_after_first_xfer(struct ch_node *node)
+{
+	unsigned int i;
+
+	if (overflow_sent)
+		return;
+	overflow_sent = true;
+	for (i = 0; i < 2; i++) {
+		struct can_frame cf = ch_frame(0x200 + i, 8, i);
+
+		assert_int_equal(sim_phantom_send(&node->rig->bus, &cf, 0), 0);
+	}
+	sim_bus_advance(&node->rig->bus, 2 * FRAME_NS);
+}
+
+/*
+ * The overflow's ERRIF unseen by READ STATUS: a pass sees RXB0 alone,
+ * then RXB1 fills and a frame overflows while it reads.  The next pass
+ * takes RXB1 (rightly stamped: it waited) and leaves INT asserted by the
+ * ERRIF alone; a frame arriving then came after INT fired, and the pass
+ * that finds it must see the ERRIF.
+ */
+static void test_rx_stamp_unseen_overflow(void **state)
+{
+	struct ch_rig *rig = stamp_rig(MCP2510_MODEL_MCP2515, true);
+	struct ch_node *node = &rig->node[0];
+
+	(void)state;
+	arrive_unserviced(rig, 0x100, 1);
+	overflow_sent = false;
+	node->after_xfer = overflow_after_first_xfer;
+	assert_true(next_pass_waited(node));
+	node->after_xfer = NULL;
+	assert_int_equal(node->ev.rx_count, 2);
+	assert_true(next_pass_waited(node));	/* RXB1, there all along */
+	assert_int_equal(node->ev.rx_count, 3);
+	assert_int_equal(sim_chip_counters(&node->sim)->overflows, 1);
+	assert_true(ch_int_asserted(node));	/* ERRIF */
+	arrive_unserviced(rig, 0x300, 1);
+	assert_false(next_pass_waited(node));
+	assert_int_equal(node->ev.rx_count, 4);
+	ch_rig_free(rig);
+}
+
+/* After a restart (a reset) the first pass cannot tell. */
+static void test_rx_stamp_not_after_reset(void **state)
+{
+	struct ch_rig *rig = stamp_rig(MCP2510_MODEL_MCP2510, true);
+	struct ch_node *node = &rig->node[0];
+
+	(void)state;
+	assert_int_equal(mcp2510_restart(&node->core), 0);
+	arrive_unserviced(rig, 0x100, 1);
+	assert_false(next_pass_waited(node));
+	arrive_unserviced(rig, 0x101, 1);
+	assert_true(next_pass_waited(node));
+	ch_rig_free(rig);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -515,6 +699,12 @@ int main(void)
 		cmocka_unit_test(test_rx_order_exact_mcp2510),
 		cmocka_unit_test(test_rx_order_exact_mcp2515),
 		cmocka_unit_test(test_mcp2515_rx_status),
+		cmocka_unit_test(test_rx_stamp_frames_alone),
+		cmocka_unit_test(test_rx_stamp_order_unknown),
+		cmocka_unit_test(test_rx_stamp_not_with_tx),
+		cmocka_unit_test(test_rx_stamp_errif),
+		cmocka_unit_test(test_rx_stamp_unseen_overflow),
+		cmocka_unit_test(test_rx_stamp_not_after_reset),
 	};
 
 	return cmocka_run_group_tests_name("core_irq", tests, NULL, NULL);
