@@ -5,8 +5,9 @@
 # console for tests/bench/report.py; it asserts nothing about speed.
 #
 # /extra/bench.conf sets FRAMES, RX_BITRATES, TX_BITRATES, CPU_FRAMES,
-# CPU_BITRATE, TIME_SCALE (the value given to mcp2510-sim.ko) and
-# STALL_RETRIES (0 if unset: see again() below).  For a
+# CPU_BITRATE, TIME_SCALE (the value given to mcp2510-sim.ko),
+# STALL_RETRIES (0 if unset: see again() below) and LATENCY_ONLY (1: the
+# latency measurements alone, for the PREEMPT_RT kernel).  For a
 # board profile it also sets PROFILE, SPI_TIME=1, the SPI time switches
 # (SPI_MSG_NS, SPI_CS_SETUP_NS, SPI_CS_HOLD_NS, SPI_CTLR_MAX_HZ,
 # IRQ_LATENCY_NS) and RX_SEARCH=1: then the RX bit rates (ascending) are
@@ -189,6 +190,45 @@ tx() {
 		"$(counters) $(monitor_timing)"
 }
 
+# percentiles FILE FIELD NAME: of column FIELD of FILE's lines (ns), the
+# count, nearest-rank median and 99th percentile and the maximum, as
+# NAME_n=... NAME_p50_ns=... NAME_p99_ns=... NAME_max_ns=..., and how many
+# lines say "missing" (NAME_missing=...).
+percentiles() {
+	awk -v f="$2" -v name="$3" '$2 == "missing" { m++; next } { print $f }
+		END { print m + 0 > "/tmp/percentiles.missing" }' "$1" |
+		sort -n | awk -v name="$3" '{ e[NR] = $1 } END {
+			n = NR
+			i = int(n * 0.99); if (i < n * 0.99) i++
+			printf "%s_n=%d %s_p50_ns=%d %s_p99_ns=%d %s_max_ns=%d", name, n,
+				name, n ? e[int((n + 1) / 2)] : 0, name, n ? e[i] : 0,
+				name, n ? e[n] : 0 }'
+	echo " $3_missing=$(cat /tmp/percentiles.missing)"
+}
+
+# tx_latency BITRATE COUNT: COUNT lone frames from can0, each written once
+# the previous one came back (can-latency, tests/vm/guest): from write() to
+# the frame's end on the bus, ns of real time.
+tx_latency() {
+	start_at "$1"
+	cpu_mark
+	can-latency tx can0 "$2" "$SIM/monitor_times" >/tmp/latency.txt ||
+		fail "can-latency tx at $1 bit/s: $(tail -n 1 /tmp/latency.txt)"
+	report tx-latency "bitrate=$1 $(percentiles /tmp/latency.txt 2 lat)"
+}
+
+# rx_latency BITRATE COUNT: COUNT lone frames from the phantom, each sent
+# once the previous one was received: from the frame's end on the bus to
+# recvmsg() returning it (lat) and to its receive timestamp (stamp).
+rx_latency() {
+	start_at "$1"
+	cpu_mark
+	can-latency rx can0 "$2" "$SIM/inject" "$SIM/monitor_times" >/tmp/latency.txt ||
+		fail "can-latency rx at $1 bit/s: $(tail -n 1 /tmp/latency.txt)"
+	report rx-latency "bitrate=$1 $(percentiles /tmp/latency.txt 2 lat)" \
+		"$(percentiles /tmp/latency.txt 3 stamp)"
+}
+
 # rxts BITRATE COUNT: the phantom floods COUNT frames (at most 256: the
 # monitor) to can0 while can-tstamp (tests/vm/guest) takes them with their
 # receive timestamps; reports how far after each frame's end on the bus
@@ -203,21 +243,10 @@ rxts() {
 	cpu_mark
 	echo "$2 $FLOOD_FRAME $1" >"$SIM/flood"
 	wait "$_pid" || fail "can-tstamp failed"
-	report rxts "bitrate=$1 frames=$2 $(rxts_figures)"
+	sed 1d /tmp/rxts.txt >/tmp/rxts.data
+	report rxts "bitrate=$1 frames=$2 $(percentiles /tmp/rxts.data 2 err)"
 }
 rxts_ready() { read -r _l </tmp/rxts.txt && [ "$_l" = ready ]; }
-rxts_figures() {
-	sed 1d /tmp/rxts.txt | awk '$2 == "missing" { m++; next } { print $2 }
-		END { print "missing", m + 0 > "/tmp/rxts.missing" }' |
-		sort -n | awk '{ e[NR] = $1 } END {
-		n = NR
-		p50 = n ? e[int((n + 1) / 2)] : 0
-		i = int(n * 0.99); if (i < n * 0.99) i++
-		p99 = n ? e[i] : 0
-		printf "stamped=%d err_p50_ns=%d err_p99_ns=%d err_max_ns=%d", n, p50, p99, n ? e[n] : 0 }'
-	read -r _ _m </tmp/rxts.missing
-	echo " missing=$_m"
-}
 
 # From chip 0's frames in the monitor (the last 256): how many, their mean
 # length in bits, the span from the first start to the last start, the
@@ -247,6 +276,14 @@ report setup "driver=$VM_DRIVER variant=$VM_VARIANT time_scale=$TIME_SCALE" \
 	"clocksource=$(cat /sys/devices/system/clocksource/clocksource0/current_clocksource)" \
 	"spi_time=$(cat "$SIM/spi_time") clock_stalls=$(cat "$SIM/clock_stalls") $timing"
 can_up can0 "$CPU_BITRATE"
+# one frame at a time, end to end (FRAMES of each, at most 256: the monitor)
+again tx_latency "$CPU_BITRATE" "$FRAMES"
+again rx_latency "$CPU_BITRATE" "$FRAMES"
+if [ "${LATENCY_ONLY:-0}" = 1 ]; then
+	ip link set can0 down
+	report "done" "clock_stalls=$(cat "$SIM/clock_stalls")"
+	exit 0
+fi
 # CPU and SPI cost at steady state: long bursts at a bit rate every driver
 # keeps up with, and the same time without traffic to subtract.
 again idle "$(burst_seconds "$CPU_FRAMES" "$CPU_BITRATE")"

@@ -101,6 +101,7 @@ def driver_figures(log):
         "tx_cpu_us_per_frame": cpu_us_per_frame(tx, idle, tx["frames_tx"]),
         "cpu_burst_loss": round(1 - rx["received"] / rx["frames"], 4),
         "rx_timestamp_error_us": rx_timestamp_error(log, log["setup"][0]["time_scale"]),
+        **latency_figures(log, log["setup"][0]["time_scale"]),
         "tx_bus_utilisation": {},
         "tx_idle_us_per_gap": {},
         "rx_loss": {},
@@ -143,22 +144,46 @@ def last_by_bitrate(runs):
     return sorted({r["bitrate"]: r for r in runs}.values(), key=lambda r: r["bitrate"])
 
 
-def rx_timestamp_error(log, scale):
-    """How far receive timestamps lie after the end of frame on the bus,
-    in microseconds of bus time (real time over time_scale, as a board
-    would see it), from the last rxts run; None for a log without one."""
-    runs = log.get("rxts")
-    if not runs:
-        return None
-    run = runs[-1]
+def distribution_us(run, name, scale):
+    """The NAME_* percentiles (ns of real time) of a guest measurement in
+    microseconds of bus time (real time over time_scale, as a board would
+    see it)."""
+    def us(ns):
+        return round(ns / 1e3 / scale, 2)
     return {
-        "p50": round(run["err_p50_ns"] / 1e3 / scale, 2),
-        "p99": round(run["err_p99_ns"] / 1e3 / scale, 2),
-        "max": round(run["err_max_ns"] / 1e3 / scale, 2),
-        "frames": int(run["stamped"]),
-        "not_on_bus": int(run["missing"]),
+        "p50": us(run[f"{name}_p50_ns"]),
+        "p99": us(run[f"{name}_p99_ns"]),
+        "max": us(run[f"{name}_max_ns"]),
+        "frames": int(run[f"{name}_n"]),
+        "not_on_bus": int(run[f"{name}_missing"]),
         "bitrate": int(run["bitrate"]),
     }
+
+
+def rx_timestamp_error(log, scale):
+    """How far receive timestamps lie after the end of frame on the bus,
+    in a flood, from the last rxts run; None for a log without one."""
+    runs = log.get("rxts")
+    return distribution_us(runs[-1], "err", scale) if runs else None
+
+
+LATENCIES = (("tx-latency", "tx_latency_us"), ("rx-latency", "rx_latency_us"))
+
+
+def latency_figures(log, scale):
+    """Lone frames end to end: TX from write() to the end of frame on the
+    bus, RX from there to recvmsg(), from the last run of each."""
+    return {key: distribution_us(log[what][-1], "lat", scale)
+            for what, key in LATENCIES if log.get(what)}
+
+
+def rt_figures(log):
+    """The latency-only run on the PREEMPT_RT kernel."""
+    setup = log["setup"][0]
+    kept = [log[what][-1] for what, _ in LATENCIES if log.get(what)]
+    fig = latency_figures(log, setup["time_scale"])
+    fig["valid"] = all(k.get("stalls", 0) == 0 for k in kept)
+    return fig
 
 
 def profile_figures(log):
@@ -172,14 +197,16 @@ def profile_figures(log):
     tx = log["cpu-tx"][-1]
     floods = last_by_bitrate(log.get("rx", []))
     bursts = last_by_bitrate(log.get("tx", []))
-    kept = [idle, rx, tx] + floods + bursts + log.get("rxts", [])[-1:]
+    kept = [idle, rx, tx] + floods + bursts + [
+        log[w][-1] for w in ("rxts", "tx-latency", "rx-latency") if log.get(w)]
     boot_stalls = int(log["done"][0].get("clock_stalls", 0) - setup.get("clock_stalls", 0))
     if all("stalls" in k for k in kept):
         stalls = int(sum(k["stalls"] for k in kept))
     else:
         stalls = boot_stalls
     tries = sum(len(log.get(w, []))
-                for w in ("idle", "cpu-rx", "cpu-tx", "rx", "tx", "rxts"))
+                for w in ("idle", "cpu-rx", "cpu-tx", "rx", "tx", "rxts",
+                          "tx-latency", "rx-latency"))
     cpu = cpu_us_per_frame(rx, idle, rx["received"])
     scale = setup["time_scale"]
     fig = {
@@ -202,6 +229,7 @@ def profile_figures(log):
             per_frame(rx["busy_cs"] * 1e4 / scale, rx["received"]),
         "cpu_burst_loss": round(1 - rx["received"] / rx["frames"], 4),
         "rx_timestamp_error_us": rx_timestamp_error(log, scale),
+        **latency_figures(log, scale),
         "clock_stalls": stalls,
         "clock_stalls_boot": boot_stalls,
         "measurements_repeated": tries - len(kept),
@@ -250,6 +278,9 @@ def collect_profiles(out):
             log = parse_console(path)
             entry.setdefault("setup", profile_setup(log))
             entry.setdefault(driver, {})[chip] = profile_figures(log)
+            rt = os.path.join(out, f"{profile}-rt-{driver}-{chip}.console.log")
+            if complete(rt):
+                entry[driver][chip]["rt"] = rt_figures(parse_console(rt))
         found[profile] = entry
     return found
 
@@ -413,6 +444,7 @@ def profile_tables(profiles):
                            f" | {stalls} |")
         out.append("")
         out += rx_timestamp_table(entry)
+        out += latency_table(entry)
     return out
 
 
@@ -429,6 +461,25 @@ def rx_timestamp_table(entry):
             out.append(f"| {driver} | {chip} | {fmt(f['p50'])} | {fmt(f['p99'])} | {f['frames']} |")
         else:
             out.append(f"| {driver} | {chip} | - | - | - |")
+    return out + [""]
+
+
+def latency_table(entry):
+    """Lone frames end to end per driver and chip, on 6.1 and on
+    PREEMPT_RT, when measured."""
+    def cell(f, key):
+        d = (f or {}).get(key)
+        return f"{fmt(d['p50'])} / {fmt(d['p99'])}" if d else "-"
+    rows = [(d, c, entry[d][c], entry[d][c].get("rt")) for d in DRIVERS for c in CHIPS]
+    if not any(f.get("tx_latency_us") for _, _, f, _ in rows):
+        return []
+    out = ["Lone frames end to end (µs of bus time, median / 99th percentile): TX from"
+           " write() to the end of frame on the bus, RX from there to recvmsg():", "",
+           "| driver | chip | TX 6.1 | RX 6.1 | TX PREEMPT_RT | RX PREEMPT_RT |",
+           "|---|---|---|---|---|---|"]
+    for driver, chip, f, rt in rows:
+        out.append(f"| {driver} | {chip} | {cell(f, 'tx_latency_us')} | {cell(f, 'rx_latency_us')}"
+                   f" | {cell(rt, 'tx_latency_us')} | {cell(rt, 'rx_latency_us')} |")
     return out + [""]
 
 
@@ -498,9 +549,11 @@ def main():
         for name, entry in profiles.items():
             for driver in DRIVERS:
                 for chip in CHIPS:
-                    if not entry[driver][chip]["valid"]:
-                        print(f"bench: {name}: {driver} on {chip}: a clock stall fired,"
-                              " the run is invalid", file=sys.stderr)
+                    fig = entry[driver][chip]
+                    for kernel, f in (("6.1", fig), ("PREEMPT_RT", fig.get("rt"))):
+                        if f and not f["valid"]:
+                            print(f"bench: {name}: {driver} on {chip} ({kernel}): a clock"
+                                  " stall fired, the run is invalid", file=sys.stderr)
     print(f"bench: {', '.join(done)}")
 
 
