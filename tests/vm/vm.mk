@@ -64,7 +64,7 @@ vmtest-one:
 	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|debug|rt]"; exit 2; }
 	@$(MAKE) --no-print-directory vm-kernel-$(or $(KERNEL),6.1)
 	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS=$(or $(KERNEL),6.1))
-	@VM_SELFTEST=0 $(VM_DIR)/vmtest -k "$(or $(KERNEL),6.1)" $(abspath $(SCENARIO))
+	@VM_SELFTEST=0 VM_EVERY_SCENARIO=1 $(VM_DIR)/vmtest -k "$(or $(KERNEL),6.1)" $(abspath $(SCENARIO))
 
 vm-info:
 	@for k in 6.1 6.12 debug rt; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
