@@ -77,7 +77,6 @@ include driver/core/core.mk
 include userspace/userspace.mk
 include tests/unit/unit.mk
 include driver/driver.mk
-include tests/trixie/trixie.mk
 include tests/install/install.mk
 include tests/build/build.mk
 include tests/vm-arm64/vm-arm64.mk
@@ -87,6 +86,8 @@ include tests/soak/soak.mk
 include dts/dts.mk
 include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
+# Late: the Debian 13 root it needs is made in the background meanwhile.
+include tests/trixie/trixie.mk
 include tests/bench/bench.mk
 
 # Last: the scenario suite on the four rig kernels, so that the debug kernel's
