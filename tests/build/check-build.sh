@@ -23,10 +23,7 @@ top=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/mcp2510-build.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
-passed=0
-failed=0
-pass() { passed=$((passed + 1)); echo "  PASS  $1"; }
-fail() { failed=$((failed + 1)); echo "  FAIL  $1"; }
+. "$top/tests/lib/tally.sh"
 # mk OUT ARGS...: make in the top directory, its output in $tmp/OUT.log;
 # the flags of the environment are not the caller's unless it sets them.
 mk() {
@@ -178,5 +175,4 @@ PATH="$tmp/stub:$PATH" mk missing-install userspace US_OUT="$tmp/missing-us" INS
 grep -q 'apt-get .*install .*pkg-config libgpiod-dev' "$tmp/calls" 2>/dev/null &&
 	pass "INSTALL_DEPS=1 installs them" || { show missing-install; fail "INSTALL_DEPS=1 did not run apt-get"; }
 
-echo "build-check: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+tally build-check

@@ -21,10 +21,7 @@ top=$(cd "$(dirname "$0")/../.." && pwd)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/mcp2510-install.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 
-passed=0
-failed=0
-pass() { passed=$((passed + 1)); echo "  PASS  $1"; }
-fail() { failed=$((failed + 1)); echo "  FAIL  $1"; }
+. "$top/tests/lib/tally.sh"
 mk() { make --no-print-directory -C "$top" "$@"; }
 
 echo "install-check: make modules without the running kernel's headers"
@@ -123,5 +120,4 @@ else
 	done
 fi
 
-echo "install-check: $passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+tally install-check

@@ -88,6 +88,15 @@ dump_wait() {
 	wait "$DUMP_PID" || true
 }
 
+# frame_passes FROM TO ID BYTE: the frame ID#BYTE (a standard ID, one data
+# byte) sent on FROM arrives on TO.  A status, for the caller to say why.
+frame_passes() {
+	dump_start "$2,$3:7FF" 1 /tmp/passes.txt
+	cansend "$1" "$3#$4" || { kill "$DUMP_PID" 2>/dev/null; dump_wait; return 1; }
+	dump_wait
+	grep -q "$3 *\[1\] *$4" /tmp/passes.txt || { cat /tmp/passes.txt >&2; return 1; }
+}
+
 # expect_lines FILE N: FILE has exactly N lines, or the scenario fails.
 expect_lines() {
 	_got=$(wc -l <"$1")

@@ -14,6 +14,7 @@
  * or a socket error.
  */
 #define _GNU_SOURCE
+#include <ctype.h>
 #include <errno.h>
 #include <linux/can.h>
 #include <net/if.h>
@@ -48,15 +49,15 @@ static int open_on(const char *ifname)
 	return s;
 }
 
-static int hex(char c)
+/* The byte of the two hex digits at @p, or -1. */
+static int hex_byte(const char *p)
 {
-	if (c >= '0' && c <= '9')
-		return c - '0';
-	if (c >= 'a' && c <= 'f')
-		return c - 'a' + 10;
-	if (c >= 'A' && c <= 'F')
-		return c - 'A' + 10;
-	return -1;
+	char two[3] = { 0 };
+
+	if (!isxdigit((unsigned char)p[0]) || !isxdigit((unsigned char)p[1]))
+		return -1;
+	memcpy(two, p, 2);
+	return (int)strtol(two, NULL, 16);
 }
 
 /* ID#DATA[_X]: 3 or 8 hex digits of id, up to 8 bytes, raw DLC X. */
@@ -75,14 +76,18 @@ static int parse(const char *text, struct can_frame *cf)
 		return -1;
 	cf->can_id = hash - text == 8 ? (canid_t)id | CAN_EFF_FLAG : (canid_t)id;
 	for (p = hash + 1; *p && *p != '_'; p += 2) {
-		if (cf->len == CAN_MAX_DLEN || hex(p[0]) < 0 || hex(p[1]) < 0)
+		int byte = hex_byte(p);
+
+		if (cf->len == CAN_MAX_DLEN || byte < 0)
 			return -1;
-		cf->data[cf->len++] = (__u8)(hex(p[0]) << 4 | hex(p[1]));
+		cf->data[cf->len++] = (__u8)byte;
 	}
 	if (*p == '_') {
-		if (hex(p[1]) <= CAN_MAX_DLEN || p[2])
+		/* one hex digit, 9..F: a DLC that says more than 8 bytes */
+		if (!isxdigit((unsigned char)p[1]) || p[2] ||
+		    strtol(p + 1, NULL, 16) <= CAN_MAX_DLEN)
 			return -1;
-		cf->len8_dlc = (__u8)hex(p[1]);
+		cf->len8_dlc = (__u8)strtol(p + 1, NULL, 16);
 	}
 	return 0;
 }

@@ -9,16 +9,12 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
-state() { # CHIP NAME
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/state
-}
 expect() { # WHAT GOT WANTED
 	[ "$2" = "$3" ] || fail "$1 is '$2', expected '$3'"
 }
 
 # The gpiochip is labelled with the SPI device's name (6.12: spi-<node>).
-dev=$(state 0 spi_device)
+dev=$(sim_state 0 spi_device)
 chip=$(gpiodetect | awk -v l="[$dev]" '$2 == l { print $1 }')
 [ -n "$chip" ] || { gpiodetect; fail "no gpiochip labelled $dev"; }
 gpiodetect | grep "^$chip " | grep -q '(5 lines)' || fail "$chip has not 5 lines"
@@ -33,27 +29,27 @@ done
 echo "== gpioset drives RX0BF and RX1BF"
 for line in 0 1; do
 	pin=rx${line}bf
-	expect "$pin at start" "$(state 0 $pin)" 1
+	expect "$pin at start" "$(sim_state 0 $pin)" 1
 	gpioset "$chip" $line=0
-	expect "$pin after gpioset $line=0" "$(state 0 $pin)" 0
-	expect "chip1 $pin" "$(state 1 $pin)" 1
+	expect "$pin after gpioset $line=0" "$(sim_state 0 $pin)" 0
+	expect "chip1 $pin" "$(sim_state 1 $pin)" 1
 	gpioset "$chip" $line=1
-	expect "$pin after gpioset $line=1" "$(state 0 $pin)" 1
+	expect "$pin after gpioset $line=1" "$(sim_state 0 $pin)" 1
 done
 gpioset "$chip" 0=0 1=1
 can_up can0 125000
-expect "rx0bf after ifup's chip reset" "$(state 0 rx0bf)" 0
-expect "rx1bf after ifup's chip reset" "$(state 0 rx1bf)" 1
+expect "rx0bf after ifup's chip reset" "$(sim_state 0 rx0bf)" 0
+expect "rx1bf after ifup's chip reset" "$(sim_state 0 rx1bf)" 1
 ip link set can0 down
-expect "rx0bf after ifdown" "$(state 0 rx0bf)" 0
+expect "rx0bf after ifdown" "$(sim_state 0 rx0bf)" 0
 
 echo "== gpioget reads TX0RTS-TX2RTS"
 expect "TXnRTS idle" "$(gpioget "$chip" 2 3 4)" "1 1 1"
 for levels in 6:"0 1 1" 5:"1 0 1" 3:"1 1 0" 0:"0 0 0"; do
-	echo "${levels%%:*}" >$sim/chip0/rts
+	echo "${levels%%:*}" >$SIM/chip0/rts
 	expect "TXnRTS with rts=${levels%%:*}" "$(gpioget "$chip" 2 3 4)" "${levels#*:}"
 done
-echo 7 >$sim/chip0/rts
+echo 7 >$SIM/chip0/rts
 
 echo "== only gpio-controller devices have a gpiochip"
 [ "$(gpiodetect | grep -c '\[spi')" -eq 2 ] || { gpiodetect; fail "not one gpiochip per chip"; }

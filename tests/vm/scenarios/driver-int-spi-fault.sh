@@ -25,13 +25,6 @@ can_up can1 500000
 	fail "chip1's INT is $(sim_state 1 irq_type), not level-low"
 irq=$(sim_state 1 irq)
 
-# exchange FROM TO ID DATA: TO receives the frame FROM sends.
-exchange() {
-	dump_start "$2,$3:7FF" 1 /tmp/ex.txt
-	cansend "$1" "$3#$4"
-	dump_wait
-	grep -q "$3 *\[1\] *$4" /tmp/ex.txt
-}
 # received N: can1 has received N frames or more.
 received() { [ "$(if_stat can1 rx_packets)" -ge "$1" ]; }
 
@@ -60,15 +53,15 @@ wait_for 10 received $((rx + 1)) || {
 }
 nobody_cared && fail "genirq disabled chip1's INT"
 driver_took_over || fail "the driver never stopped taking the failing line"
-exchange can0 can1 202 02 || fail "can0 -> can1 broken after the fault"
-exchange can1 can0 203 03 || fail "can1 -> can0 broken after the fault"
+frame_passes can0 can1 202 02 || fail "can0 -> can1 broken after the fault"
+frame_passes can1 can0 203 03 || fail "can1 -> can0 broken after the fault"
 # The line is given back once the backoff (2 s at most) is over: a frame
 # then comes in by interrupt, not by polling.  (The simulator's irq_masked
 # is no proof either way: after the driver's enable_irq() it may still
 # read 1 while INT is high, and the next assertion is delivered.)
 nap 3
 irqs=$(sim_counter 1 irqs_delivered)
-exchange can0 can1 204 04 || fail "can0 -> can1 broken once the line is back"
+frame_passes can0 can1 204 04 || fail "can0 -> can1 broken once the line is back"
 [ "$(sim_counter 1 irqs_delivered)" -gt "$irqs" ] || {
 	echo "chip1: int $(sim_state 1 int), irq_masked $(sim_state 1 irq_masked), irq_storms $(ethtool_stat can1 irq_storms)"
 	fail "chip1's INT was not given back: the frame came without an interrupt"

@@ -11,13 +11,10 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
-[ -d "$sim" ] || mount -t debugfs none /sys/kernel/debug
-[ -d "$sim" ] || fail "no $sim"
+[ -d "$SIM" ] || fail "no $SIM"
 [ -w /sys/power/pm_test ] || fail "no /sys/power/pm_test (CONFIG_PM_DEBUG)"
 grep -qw freeze /sys/power/state || fail "no suspend-to-idle in /sys/power/state"
 
-chip_state() { awk -v n="$2" '$1 == n { print $2 }' "$sim/chip$1/state"; }
 
 # sleep_and_wake: one pass through every device's suspend and resume.
 sleep_and_wake() {
@@ -28,14 +25,8 @@ sleep_and_wake() {
 
 # exchange TAG: a frame each way between can0 and can1.
 exchange() {
-	dump_start can1 1 /tmp/to1.txt
-	cansend can0 "123#$1" || fail "cansend can0"
-	dump_wait
-	grep -q "123 *\[1\] *$1" /tmp/to1.txt || { cat /tmp/to1.txt; fail "can1 did not receive 123#$1"; }
-	dump_start can0 1 /tmp/to0.txt
-	cansend can1 "456#$1" || fail "cansend can1"
-	dump_wait
-	grep -q "456 *\[1\] *$1" /tmp/to0.txt || { cat /tmp/to0.txt; fail "can0 did not receive 456#$1"; }
+	frame_passes can0 can1 123 "$1" || fail "can1 did not receive 123#$1"
+	frame_passes can1 can0 456 "$1" || fail "can0 did not receive 456#$1"
 }
 
 echo "== before the sleep"
@@ -47,13 +38,13 @@ echo 456 >"$f/filter2"
 can_up can0 250000
 can_up can1 250000
 exchange 01
-[ "$(chip_state 0 bitrate)" -eq 250000 ] || fail "chip0 bit rate $(chip_state 0 bitrate)"
+[ "$(sim_state 0 bitrate)" -eq 250000 ] || fail "chip0 bit rate $(sim_state 0 bitrate)"
 
 echo "== suspend and resume"
 sleep_and_wake
 dmesg | grep -i 'PM: suspend' | tail -n 4
-[ "$(chip_state 0 opmode)" = normal ] || fail "chip0 in $(chip_state 0 opmode) after resume"
-[ "$(chip_state 0 bitrate)" -eq 250000 ] || fail "chip0 bit rate $(chip_state 0 bitrate) after resume"
+[ "$(sim_state 0 opmode)" = normal ] || fail "chip0 in $(sim_state 0 opmode) after resume"
+[ "$(sim_state 0 bitrate)" -eq 250000 ] || fail "chip0 bit rate $(sim_state 0 bitrate) after resume"
 ip -details link show can0 | grep -q 'state ERROR-ACTIVE' || fail "can0 not error-active after resume"
 exchange 02
 # The filters came back too: a frame they do not pass stays out.
@@ -65,10 +56,10 @@ grep -q '457' /tmp/filtered.txt && fail "the hardware filters were lost over the
 grep -q '456 *\[1\] *04' /tmp/filtered.txt || fail "can0 did not receive 456#04"
 
 echo "== a dead chip at resume, then down/up once it has power"
-echo 0 >"$sim/chip0/power"
+echo 0 >"$SIM/chip0/power"
 sleep_and_wake || true
 dmesg | grep -q 'cannot bring the chip back' || fail "no resume error for a dead chip"
-echo 1 >"$sim/chip0/power"
+echo 1 >"$SIM/chip0/power"
 sleep 0.2
 ip link set can0 down
 ip link set can0 up || fail "can0 does not come back up"

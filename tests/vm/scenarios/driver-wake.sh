@@ -29,9 +29,7 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
-[ -d "$sim" ] || mount -t debugfs none /sys/kernel/debug
-[ -d "$sim" ] || fail "no $sim"
+[ -d "$SIM" ] || fail "no $SIM"
 [ -w /sys/power/pm_debug_messages ] || fail "no /sys/power/pm_debug_messages (CONFIG_PM_SLEEP_DEBUG)"
 [ -r /sys/power/pm_wakeup_irq ] || fail "no /sys/power/pm_wakeup_irq (CONFIG_PM_SLEEP_DEBUG)"
 grep -qw freeze /sys/power/state || fail "no suspend-to-idle in /sys/power/state"
@@ -51,14 +49,8 @@ echo 1 >/sys/power/pm_debug_messages
 
 # exchange TAG: a frame each way between can0 and can1.
 exchange() {
-	dump_start can1 1 /tmp/to1.txt
-	cansend can0 "123#$1" || fail "cansend can0"
-	dump_wait
-	grep -q "123 *\[1\] *$1" /tmp/to1.txt || { cat /tmp/to1.txt; fail "can1 did not receive 123#$1"; }
-	dump_start can0 1 /tmp/to0.txt
-	cansend can1 "456#$1" || fail "cansend can1"
-	dump_wait
-	grep -q "456 *\[1\] *$1" /tmp/to0.txt || { cat /tmp/to0.txt; fail "can0 did not receive 456#$1"; }
+	frame_passes can0 can1 123 "$1" || fail "can1 did not receive 123#$1"
+	frame_passes can1 can0 456 "$1" || fail "can0 did not receive 456#$1"
 }
 
 # back_to_normal: after a resume, chip0 runs again and frames flow.
@@ -88,7 +80,7 @@ can_up can0 125000
 can_up can1 125000
 exchange 01
 # regs row 20: CNF3 is its ninth byte
-cnf3=$(awk '$1 == "20:" { print $10 }' "$sim/chip0/regs")
+cnf3=$(awk '$1 == "20:" { print $10 }' "$SIM/chip0/regs")
 [ $((0x$cnf3 & 0x40)) -ne 0 ] || fail "CNF3 is 0x$cnf3: no WAKFIL"
 
 # sleep_until_frame TAG: suspend to idle; the phantom sends 7ff#TAG
@@ -100,13 +92,13 @@ cnf3=$(awk '$1 == "20:" { print $10 }' "$sim/chip0/regs")
 sleep_until_frame() {
 	read -r _ok_before </sys/power/suspend_stats/success
 	dmesg -c >/dev/null
-	echo "noirq 1000 7ff#$1" >"$sim/inject_later"
+	echo "noirq 1000 7ff#$1" >"$SIM/inject_later"
 	read -r _t0 _ </proc/uptime
 	echo freeze >/sys/power/state || fail "suspend failed: $(dmesg | tail -n 5)"
 	read -r _t1 _ </proc/uptime
 	echo "echo freeze returned after $(awk -v a="$_t0" -v b="$_t1" 'BEGIN { printf "%.2f", b - a }') s"
 	dmesg | grep -E 'PM: (suspend|resume|Triggering|noirq)|suspend-to-idle' || true
-	read -r _sent <"$sim/inject_later"
+	read -r _sent <"$SIM/inject_later"
 	[ "$_sent" = "sent 0" ] || fail "inject_later: $_sent"
 	read -r _ok_after </sys/power/suspend_stats/success
 	expect_eq "suspend_stats/success" "$_ok_after" $((_ok_before + 1))
@@ -150,7 +142,7 @@ echo disabled >"$dev1/power/wakeup"
 wake_count
 before=$WAKE_COUNT
 dmesg -c >/dev/null
-echo "devices 0 7ff#c1" >"$sim/inject_later"
+echo "devices 0 7ff#c1" >"$SIM/inject_later"
 read -r t0 _ </proc/uptime
 if echo freeze >/sys/power/state 2>/tmp/freeze.err; then
 	outcome="suspend-to-idle left at once"

@@ -15,14 +15,6 @@
 set -eu
 . /lib/rig.sh
 
-sim=/sys/kernel/debug/mcp2510-sim
-
-counter() {
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/counters
-}
-state() {
-	awk -v k="$2" '$1 == k { print $2 }' $sim/chip"$1"/state
-}
 
 # wait_for CONDITION...: up to 5 s for the command to succeed
 wait_for() {
@@ -44,12 +36,12 @@ ctl() {
 # runs in normal mode, so it takes part in the bus
 dump_ready() {
 	grep -q "INT1 *|mcp2510 " /sys/kernel/debug/gpio &&
-		[ "$(state 1 opmode)" = normal ]
+		[ "$(sim_state 1 opmode)" = normal ]
 }
 
 # expect_grew CHIP NAME BEFORE WHAT
 expect_grew() {
-	_now=$(counter "$1" "$2")
+	_now=$(sim_counter "$1" "$2")
 	[ "$_now" -gt "$3" ] ||
 		fail "chip$1 $2 stayed at $_now during $4: INT was not delivered"
 }
@@ -64,7 +56,7 @@ drv=$(basename "$(readlink /sys/class/net/can0/device/driver)")
 [ "$drv" = mcp2510 ] || fail "can0 is bound to '$drv', not mcp2510"
 [ ! -e /sys/class/net/can1 ] || fail "chip 1 became a CAN interface"
 
-dev=/dev/spidev$(state 1 spi_bus).$(state 1 spi_cs)
+dev=/dev/spidev$(sim_state 1 spi_bus).$(sim_state 1 spi_cs)
 wait_for test -c "$dev" || fail "$dev did not appear"
 gpiodetect
 gpiochip=$(gpiodetect | awk '$2 == "[mcp2510-sim]" { print $1 }')
@@ -77,8 +69,8 @@ echo "chip 1: $dev, INT on $gpiochip line $int1"
 can_up can0 125000
 
 echo "== mcp2510ctl -> can0"
-irqs=$(counter 1 irqs_delivered)
-edges=$(counter 1 interrupts)
+irqs=$(sim_counter 1 irqs_delivered)
+edges=$(sim_counter 1 interrupts)
 dump_start can0 3 /tmp/can0.txt
 ctl send 123#DEADBEEF || fail "mcp2510ctl send of a standard frame failed"
 ctl send 12345678#0102030405060708 321#R ||
@@ -97,10 +89,10 @@ expect_grew 1 irqs_delivered "$irqs" "send"
 
 echo "== can0 -> mcp2510ctl"
 # the readiness check below relies on the tool leaving normal mode on exit
-[ "$(state 1 opmode)" != normal ] ||
+[ "$(sim_state 1 opmode)" != normal ] ||
 	fail "chip 1 stayed in normal mode after mcp2510ctl exited"
-irqs=$(counter 1 irqs_delivered)
-edges=$(counter 1 interrupts)
+irqs=$(sim_counter 1 irqs_delivered)
+edges=$(sim_counter 1 interrupts)
 ctl dump --count 3 --timeout 5000 >/tmp/dump.txt &
 ctl_pid=$!
 wait_for dump_ready || fail "mcp2510ctl dump did not bring chip 1 up with INT1"
@@ -122,9 +114,9 @@ expect_grew 1 irqs_delivered "$irqs" "dump"
 
 echo "== the SPI the tool used"
 for c in spi_mode_errors spi_overspeed spi_failed overflows; do
-	[ "$(counter 1 $c)" -eq 0 ] || fail "chip1 $c is $(counter 1 $c)"
+	[ "$(sim_counter 1 $c)" -eq 0 ] || fail "chip1 $c is $(sim_counter 1 $c)"
 done
-cat $sim/chip1/counters
+cat $SIM/chip1/counters
 ip -details -statistics link show can0
 tx0=$(cat /sys/class/net/can0/statistics/tx_packets)
 rx0=$(cat /sys/class/net/can0/statistics/rx_packets)
@@ -168,8 +160,8 @@ ctl2() {
 	mcp2510ctl-gpiod2 --device "spidev:$dev" --int "$_int" \
 		--clock 16000000 --variant "$VM_VARIANT" --bitrate 125000 "$@"
 }
-irqs=$(counter 1 irqs_delivered)
-edges=$(counter 1 interrupts)
+irqs=$(sim_counter 1 irqs_delivered)
+edges=$(sim_counter 1 interrupts)
 dump_start can0 1 /tmp/can0-v2.txt
 ctl2 mcp2510-sim:INT1 send 2A5#C0FFEE ||
 	fail "mcp2510ctl-gpiod2 send with INT on mcp2510-sim:INT1 failed"
@@ -180,7 +172,7 @@ grep -q ' 2A5 *\[3\] *C0 FF EE$' /tmp/can0-v2.txt ||
 	fail "can0 missed mcp2510ctl-gpiod2's 2A5#C0FFEE"
 expect_grew 1 interrupts "$edges" "send (libgpiod 2)"
 expect_grew 1 irqs_delivered "$irqs" "send (libgpiod 2)"
-irqs=$(counter 1 irqs_delivered)
+irqs=$(sim_counter 1 irqs_delivered)
 # dump returns with its frame: the long timeout only covers a slow guest
 ctl2 INT1 dump --count 1 --timeout 20000 >/tmp/dump-v2.txt &
 ctl_pid=$!
