@@ -67,6 +67,7 @@ static int parse(const char *text, struct can_frame *cf)
 	const char *p;
 	unsigned long id;
 	char *end;
+	long dlc;
 
 	memset(cf, 0, sizeof(*cf));
 	if (!hash || (hash - text != 3 && hash - text != 8))
@@ -84,10 +85,12 @@ static int parse(const char *text, struct can_frame *cf)
 	}
 	if (*p == '_') {
 		/* one hex digit, 9..F: a DLC that says more than 8 bytes */
-		if (!isxdigit((unsigned char)p[1]) || p[2] ||
-		    strtol(p + 1, NULL, 16) <= CAN_MAX_DLEN)
+		if (!isxdigit((unsigned char)p[1]) || p[2])
 			return -1;
-		cf->len8_dlc = (__u8)strtol(p + 1, NULL, 16);
+		dlc = strtol(p + 1, NULL, 16);
+		if (dlc <= CAN_MAX_DLEN)
+			return -1;
+		cf->len8_dlc = (__u8)dlc;
 	}
 	return 0;
 }
