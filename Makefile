@@ -69,6 +69,10 @@ endef
 .PHONY: FORCE
 FORCE:
 
+# The kernel series built and tested for, KERNEL_NEWEST among them
+# (tests/matrix/kernels).
+include tests/matrix/kernels
+
 # Fragments append their steps to CHECK_STEPS in the order they should run.
 CHECK_STEPS :=
 
