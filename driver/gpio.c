@@ -73,7 +73,7 @@ static int mcp2510_gpio_get(struct gpio_chip *gc, unsigned int offset)
 	return ret;
 }
 
-/* A failed SPI transfer is the caller's to know (gpioset reports it). */
+/* A failed SPI transfer is the caller's to know, not only the log's. */
 static int mcp2510_gpio_set(struct gpio_chip *gc, unsigned int offset,
 			    int value)
 {
