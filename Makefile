@@ -52,6 +52,7 @@ help:
 	@echo "make modules   kernel modules (KDIR= selects the headers)"
 	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
+	@echo "make kernels-news  is there a kernel series newer than the ones tested?"
 
 deps:
 	@$(ENSURE) $(HOST_PACKAGES)
@@ -68,6 +69,10 @@ endef
 
 .PHONY: FORCE
 FORCE:
+
+# The kernel series built and tested for, KERNEL_NEWEST among them
+# (tests/matrix/matrix.mk).
+include tests/matrix/kernels
 
 # Fragments append their steps to CHECK_STEPS in the order they should run.
 CHECK_STEPS :=
@@ -89,6 +94,7 @@ include tests/lint/lint.mk
 # Late: the Debian 13 root it needs is made in the background meanwhile.
 include tests/trixie/trixie.mk
 include tests/bench/bench.mk
+include tests/matrix/matrix.mk
 
 # Last: the scenario suite on the four rig kernels, so that the debug kernel's
 # build (tests/vm/vm.mk) has had every other step to overlap with.

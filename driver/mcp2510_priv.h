@@ -18,6 +18,7 @@
 #include <linux/spinlock.h>
 #include <linux/workqueue.h>
 
+#include "compat.h"
 #include "mcp2510_core.h"
 
 #define MCP2510_DRV_NAME	"mcp2510"

@@ -256,6 +256,6 @@ const struct net_device_ops mcp2510_netdev_ops = {
 	.ndo_open = mcp2510_open,
 	.ndo_stop = mcp2510_stop_netdev,
 	.ndo_start_xmit = mcp2510_start_xmit,
-	.ndo_change_mtu = can_change_mtu,
+	.ndo_change_mtu = mcp2510_change_mtu,
 	.ndo_get_stats64 = mcp2510_get_stats64,
 };

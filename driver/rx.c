@@ -41,38 +41,6 @@
 
 #include "mcp2510_priv.h"
 
-/*
- * Everything goes to the tail of the queue, in the order it is queued.
- * Before 6.6 can-dev has no echo helper that does that, only one that
- * sorts by timestamp: with every skb stamped 0 the sort appends as well.
- * Kbuild tells which the headers have.
- */
-#ifdef MCP2510_HAVE_ECHO_QUEUE_TAIL
-static int mcp2510_offload_queue(struct can_rx_offload *offload,
-				 struct sk_buff *skb)
-{
-	return can_rx_offload_queue_tail(offload, skb);
-}
-
-static void mcp2510_offload_echo(struct can_rx_offload *offload,
-				 unsigned int slot)
-{
-	can_rx_offload_get_echo_skb_queue_tail(offload, slot, NULL);
-}
-#else
-static int mcp2510_offload_queue(struct can_rx_offload *offload,
-				 struct sk_buff *skb)
-{
-	return can_rx_offload_queue_timestamp(offload, skb, 0);
-}
-
-static void mcp2510_offload_echo(struct can_rx_offload *offload,
-				 unsigned int slot)
-{
-	can_rx_offload_get_echo_skb(offload, slot, 0, NULL);
-}
-#endif
-
 /* Before the first use of the chip lock: unlocking hands frames on. */
 int mcp2510_rx_init(struct mcp2510_priv *priv)
 {
@@ -91,7 +59,7 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
 
 	lockdep_assert_held(&priv->lock);
 	/* On failure rx-offload has freed the skb: the stack lags too far. */
-	if (mcp2510_offload_queue(&priv->offload, skb)) {
+	if (can_rx_offload_queue_tail(&priv->offload, skb)) {
 		stats->rx_dropped++;
 		stats->rx_fifo_errors++;
 		return;
@@ -120,7 +88,7 @@ unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 	if (!skb)
 		return 0;
 	len = can_skb_get_data_len(skb);
-	mcp2510_offload_echo(&priv->offload, slot);
+	can_rx_offload_get_echo_skb_queue_tail(&priv->offload, slot, NULL);
 	return len;
 }
 

@@ -23,6 +23,7 @@
 #include <linux/spinlock.h>
 
 #include "../sim/mcp2510_sim.h"
+#include "kmod_compat.h"
 #include "kmod_logic.h"
 
 #define MCP2510_SIM_NAME		"mcp2510-sim"

@@ -73,8 +73,8 @@ static enum hrtimer_restart bus_timer_fired(struct hrtimer *timer)
 void mcp2510_sim_clock_init(struct mcp2510_sim *sim, u32 time_scale)
 {
 	mcp2510_sim_clock_start(&sim->clock, ktime_get_ns(), time_scale);
-	hrtimer_init(&sim->timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_SOFT);
-	sim->timer.function = bus_timer_fired;
+	hrtimer_setup(&sim->timer, bus_timer_fired, CLOCK_MONOTONIC,
+		      HRTIMER_MODE_ABS_SOFT);
 }
 
 /* Called under the lock; the unlock re-arms the timer at the new pace. */

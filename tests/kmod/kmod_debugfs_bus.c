@@ -495,8 +495,8 @@ void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 	unsigned int n;
 
 	sim->debugfs = dir;
-	hrtimer_init(&sim->inject_timer, CLOCK_MONOTONIC, HRTIMER_MODE_REL_SOFT);
-	sim->inject_timer.function = inject_timer_fired;
+	hrtimer_setup(&sim->inject_timer, inject_timer_fired, CLOCK_MONOTONIC,
+		      HRTIMER_MODE_REL_SOFT);
 	debugfs_create_file("inject", 0200, dir, sim, &inject_fops);
 	debugfs_create_file("inject_later", 0600, dir, sim, &inject_later_fops);
 	debugfs_create_file("flood", 0600, dir, sim, &flood_fops);

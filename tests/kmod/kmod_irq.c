@@ -274,8 +274,8 @@ void mcp2510_sim_irq_init(struct mcp2510_sim *sim)
 {
 	raw_spin_lock_init(&sim->irq_lock);
 	sim->irq_work = IRQ_WORK_INIT_HARD(deliver_pending);
-	hrtimer_init(&sim->irq_timer, CLOCK_MONOTONIC, HRTIMER_MODE_ABS_HARD);
-	sim->irq_timer.function = irq_timer_fired;
+	hrtimer_setup(&sim->irq_timer, irq_timer_fired, CLOCK_MONOTONIC,
+		      HRTIMER_MODE_ABS_HARD);
 }
 
 /* Before the GPIO chip exists: route the model's pin changes to the lines. */

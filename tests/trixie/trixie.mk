@@ -2,16 +2,19 @@
 # modules on Debian 13 (trixie), in a root made with debootstrap.
 #
 #   make trixie-root    build/trixie/root: a minimal Debian 13 with the
-#                       toolchain, cmocka, libgpiod 2 and the 6.12 kernel
-#                       headers, from the Debian archive the host's apt uses
-#                       (tests/trixie/make-root); made once, made anew when
-#                       its package list changes
+#                       toolchain, cmocka, libgpiod 2, the 6.12 kernel
+#                       headers and those of the newest series the project
+#                       builds for (KERNEL_NEWEST, tests/matrix/kernels) from
+#                       trixie-backports, from the Debian archive the host's
+#                       apt uses (tests/trixie/make-root); made once, made
+#                       anew when its package list or that series changes
 #   make trixie-check   in that root, on this tree: make userspace, unit and
 #                       unit-asan (libgpiod 2 is the root's own, so the
 #                       userspace build takes the libgpiod 2 backend), then
-#                       both modules against its 6.12 headers with W=1 and
-#                       sparse, any warning failing the build as in
-#                       modules-check
+#                       both modules against its 6.12 and its newest
+#                       headers with W=1 and sparse, any warning failing
+#                       the build as in modules-check (the newest kernel's
+#                       kbuild tools need Debian 13's glibc: built here)
 #
 # The tree is mounted read-only at /src in the root and built into the
 # root's /build (tests/trixie/in-root), so the host's build/ is left alone.
@@ -38,6 +41,10 @@ trixie-check: trixie-root
 TRIXIE_HEADERS = $(shell dpkg-query -W -f='$${Depends}' \
 	linux-headers-$$(dpkg --print-architecture) 2>/dev/null | \
 	sed -n 's/.*\(linux-headers-6\.12\.[^ ,]*\).*/\1/p')
+# The newest series' headers package make-root installed.
+TRIXIE_HEADERS_NEWEST = $(shell dpkg-query -W -f='$${Package}\n' \
+	'linux-headers-$(KERNEL_NEWEST).*-$(shell dpkg --print-architecture)' \
+	2>/dev/null | grep -v -- '-common$$' | sort -V | tail -n 1)
 
 trixie-inside:
 	@[ -f /src/tests/trixie/trixie.mk ] && [ "$(BUILD)" = /build ] || { \
@@ -47,10 +54,11 @@ trixie-inside:
 	@$(MAKE) -j$$(nproc) userspace unit-build unit-asan-build
 	@$(MAKE) unit unit-asan
 	@$(MAKE) -j$$(nproc) trixie-modules
-	@echo "trixie-check: passed on Debian $$(cat /etc/debian_version): userspace (libgpiod $(US_GPIOD_VERSION) backend), $(words $(UNIT_SUITES)) unit suites plain and under ASan/UBSan, modules against $(TRIXIE_HEADERS) with W=1 and sparse, no warnings"
+	@echo "trixie-check: passed on Debian $$(cat /etc/debian_version): userspace (libgpiod $(US_GPIOD_VERSION) backend), $(words $(UNIT_SUITES)) unit suites plain and under ASan/UBSan, modules against $(TRIXIE_HEADERS) and $(TRIXIE_HEADERS_NEWEST) with W=1 and sparse, no warnings"
 
 trixie-modules:
 	$(call strict_build,$(TRIXIE_HEADERS),6.12)
+	$(call strict_build,$(TRIXIE_HEADERS_NEWEST),$(KERNEL_NEWEST))
 
 # The root is made in the background while the first steps run (its
 # download waits on the network, its install on the disk); trixie-check

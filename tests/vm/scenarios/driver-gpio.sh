@@ -4,8 +4,9 @@
 # The chip's spare pins as a gpiochip when the firmware marks the device
 # gpio-controller: gpioinfo shows the driver's five lines with their fixed
 # directions, gpioset drives RX0BF/RX1BF (the simulated pins follow, and
-# keep their level across the reset of an ifup), gpioget reads the TXnRTS
-# inputs as the simulator drives them.
+# keep their level across the reset of an ifup), a failed SPI write of a
+# pin reaches the caller or the log, gpioget reads the TXnRTS inputs as the
+# simulator drives them.
 set -eu
 . /lib/rig.sh
 
@@ -42,6 +43,23 @@ expect "rx0bf after ifup's chip reset" "$(sim_state 0 rx0bf)" 0
 expect "rx1bf after ifup's chip reset" "$(sim_state 0 rx1bf)" 1
 ip link set can0 down
 expect "rx0bf after ifdown" "$(sim_state 0 rx0bf)" 0
+
+echo "== a failed write of RX0BF is not swallowed"
+# gpio-set requests line 0 at 1, then sets it to 0 with the SPI message
+# failing.  Where gpiolib's .set returns an error the caller gets it; on
+# kernels whose .set returns nothing the driver can only log it.
+dmesg -c >/dev/null
+st=0
+out=$(gpio-set "/dev/$chip" 0 1 0 "$SIM/chip0/spi_errors" 1) || st=$?
+echo "$out"
+echo 0 >"$SIM/chip0/spi_errors"
+case $st in
+0) dmesg | grep -q "setting RX0BF failed: -EIO" ||
+	fail "the failed write was neither returned nor logged" ;;
+1) [ "$out" = "set: failed: Input/output error" ] || fail "gpio-set: $out" ;;
+*) fail "gpio-set could not run: $out" ;;
+esac
+expect "rx0bf after the failed write" "$(sim_state 0 rx0bf)" 1
 
 echo "== gpioget reads TX0RTS-TX2RTS"
 expect "TXnRTS idle" "$(gpioget "$chip" 2 3 4)" "1 1 1"

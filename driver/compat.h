@@ -1,0 +1,40 @@
+/* SPDX-License-Identifier: GPL-2.0 */
+/*
+ * The driver is written against the newest kernel's API.  What an older
+ * kernel (down to 6.1) lacks of it is supplied here, and only here: the
+ * root Kbuild greps the headers it builds against and defines
+ * MCP2510_HAVE_<feature> for each piece that is there.
+ */
+#ifndef MCP2510_COMPAT_H
+#define MCP2510_COMPAT_H
+
+#include <linux/can/dev.h>
+#include <linux/can/rx-offload.h>
+
+/*
+ * From 6.18 can-dev gives a classical CAN interface an MTU range of
+ * CAN_MTU alone and the core refuses anything else; 6.19 dropped
+ * can_change_mtu().  Before that an interface without the callback took
+ * any MTU, CAN FD's included, so it is can-dev's check there.
+ */
+#ifdef MCP2510_HAVE_CAN_CHANGE_MTU
+#define mcp2510_change_mtu	can_change_mtu
+#else
+#define mcp2510_change_mtu	NULL
+#endif
+
+/*
+ * Before 6.6 can-dev's only echo helper sorts by timestamp: with every
+ * skb stamped 0 it appends, as the tail helper does.
+ */
+#ifndef MCP2510_HAVE_ECHO_QUEUE_TAIL
+static inline unsigned int
+can_rx_offload_get_echo_skb_queue_tail(struct can_rx_offload *offload,
+				       unsigned int idx,
+				       unsigned int *frame_len_ptr)
+{
+	return can_rx_offload_get_echo_skb(offload, idx, 0, frame_len_ptr);
+}
+#endif
+
+#endif /* MCP2510_COMPAT_H */
