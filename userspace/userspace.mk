@@ -193,7 +193,7 @@ uninstall-userspace:
 	done
 
 userspace-check: userspace
-	@$(ENSURE) can-utils binutils groff-base
+	@$(ENSURE) can-utils binutils groff-base systemd
 	@$(TOP)/$(US_DIR)/check-userspace $(US_OUT) $(TOP)/$(US_DIR)/include/mcp2510.h
 
 # the same checks on the libgpiod 2 build
