@@ -392,6 +392,16 @@ static struct rig *lone_rig(const char *bus, uint32_t ctrlmode)
 	return r;
 }
 
+/* Five frames from @base up written to the bridge, and taken in. */
+static void send_five(struct rig *r, canid_t base)
+{
+	canid_t i;
+
+	for (i = 0; i < 5; i++)
+		send_to_bridge(r, base + i);
+	pump(r, 5);
+}
+
 static char *stats_text(struct rig *r)
 {
 	char *text = NULL;
@@ -412,12 +422,9 @@ static void test_stop_counts_frames_given_up(void **state)
 {
 	struct rig *r = lone_rig("sim:lone", 0);
 	char *text;
-	int i;
 
 	(void)state;
-	for (i = 0; i < 5; i++)
-		send_to_bridge(r, 0x100 + (canid_t)i);
-	pump(r, 5);
+	send_five(r, 0x100);
 	assert_int_equal(r->b.counts.to_chip, 3);
 	bridge_stop(&r->b);
 	assert_false(mcp2510_is_up(r->chip));
@@ -438,12 +445,9 @@ static void test_listen_only_drops_what_comes_to_send(void **state)
 {
 	struct rig *r = lone_rig("sim:listen", CAN_CTRLMODE_LISTENONLY);
 	struct can_frame cf;
-	int i;
 
 	(void)state;
-	for (i = 0; i < 5; i++)
-		send_to_bridge(r, 0x200 + (canid_t)i);
-	pump(r, 5);
+	send_five(r, 0x200);
 	assert_int_equal(r->b.counts.to_chip, 0);
 	assert_int_equal(r->b.counts.ignored, 5);
 	assert_false(r->b.holding);

@@ -149,6 +149,31 @@ static int set_clock(struct cli_device *d, struct cli_args *a,
 	return 0;
 }
 
+/* The control-mode switches, as "ip link set ... type can" names them. */
+static int set_ctrlmode(struct cli_device *d, struct cli_args *a, int id)
+{
+	static const struct {
+		int id;
+		uint32_t mode;
+	} modes[] = {
+		{ CLI_OPT_LOOPBACK, CAN_CTRLMODE_LOOPBACK },
+		{ CLI_OPT_LISTEN_ONLY, CAN_CTRLMODE_LISTENONLY },
+		{ CLI_OPT_TRIPLE, CAN_CTRLMODE_3_SAMPLES },
+		{ CLI_OPT_ONE_SHOT, CAN_CTRLMODE_ONE_SHOT },
+		{ CLI_OPT_BERR, CAN_CTRLMODE_BERR_REPORTING },
+	};
+	size_t i;
+
+	for (i = 0; i < sizeof(modes) / sizeof(modes[0]); i++) {
+		if (modes[i].id == id) {
+			d->ctrlmode |= modes[i].mode;
+			return 0;
+		}
+	}
+	cli_error(a->err, a->prog, "option not handled here");
+	return -1;
+}
+
 int cli_device_set(struct cli_device *d, struct cli_args *a, int id,
 		   const char *value)
 {
@@ -171,24 +196,8 @@ int cli_device_set(struct cli_device *d, struct cli_args *a, int id,
 		return set_number(a, "spi-hz", value, &d->opts.spi_hz);
 	case CLI_OPT_SPI_MODE:
 		return set_spi_mode(d, a, value);
-	case CLI_OPT_LOOPBACK:
-		d->ctrlmode |= CAN_CTRLMODE_LOOPBACK;
-		return 0;
-	case CLI_OPT_LISTEN_ONLY:
-		d->ctrlmode |= CAN_CTRLMODE_LISTENONLY;
-		return 0;
-	case CLI_OPT_TRIPLE:
-		d->ctrlmode |= CAN_CTRLMODE_3_SAMPLES;
-		return 0;
-	case CLI_OPT_ONE_SHOT:
-		d->ctrlmode |= CAN_CTRLMODE_ONE_SHOT;
-		return 0;
-	case CLI_OPT_BERR:
-		d->ctrlmode |= CAN_CTRLMODE_BERR_REPORTING;
-		return 0;
 	default:
-		cli_error(a->err, a->prog, "option not handled here");
-		return -1;
+		return set_ctrlmode(d, a, id);
 	}
 }
 
