@@ -432,6 +432,8 @@ static void test_stop_counts_frames_given_up(void **state)
 	text = stats_text(r);
 	assert_non_null(strstr(text, " to-chip 3 "));
 	assert_non_null(strstr(text, " tx-aborted 5 "));
+	/* the state is the bus's before shutdown, not the stopped chip's */
+	assert_non_null(strstr(text, "stats bus: state ERROR-PASSIVE tec 128 "));
 	free(text);
 	rig_free(r);
 }

@@ -356,6 +356,23 @@ int bridge_poll(struct bridge *b, int stop_fd, int timeout_ms)
 	return flush_out(b);
 }
 
+/* The error state and counters; bus-off as the bridge took it. */
+static void bus_state(struct bridge *b, enum can_state *state,
+		      struct can_berr_counter *bec)
+{
+	if (b->stopped) {
+		*state = b->last_state;
+		*bec = b->last_bec;
+		return;
+	}
+	*state = CAN_STATE_STOPPED;
+	bec->txerr = 0;
+	bec->rxerr = 0;
+	mcp2510_state(b->h, state, bec);
+	if (b->bus_off)
+		*state = CAN_STATE_BUS_OFF;
+}
+
 /* What the socket still holds for the chip, which will never take it. */
 static void drop_unread(struct bridge *b)
 {
@@ -371,6 +388,8 @@ void bridge_stop(struct bridge *b)
 {
 	struct mcp2510_event ev;
 
+	bus_state(b, &b->last_state, &b->last_bec);
+	b->stopped = true;
 	if (b->holding) {
 		b->holding = false;
 		b->counts.chip_drops++;
@@ -388,15 +407,13 @@ void bridge_print_stats(struct bridge *b, FILE *out, const char *prefix)
 {
 	const struct bridge_counts *c = &b->counts;
 	struct mcp2510_stats s;
-	struct can_berr_counter bec = { 0, 0 };
-	enum can_state state = CAN_STATE_STOPPED;
+	struct can_berr_counter bec;
+	enum can_state state;
 
 	rxq_refresh(b);
 	memset(&s, 0, sizeof(s));
 	mcp2510_stats(b->h, &s);
-	mcp2510_state(b->h, &state, &bec);
-	if (b->bus_off)
-		state = CAN_STATE_BUS_OFF;
+	bus_state(b, &state, &bec);
 	fprintf(out, "%s: stats frames: to-iface %llu to-chip %llu error-frames %llu ignored %llu\n",
 		prefix, (unsigned long long)c->to_socket,
 		(unsigned long long)c->to_chip,

@@ -55,6 +55,9 @@ struct bridge {
 	bool holding;
 	bool bus_off;			/* the chip is off the bus */
 	bool listen_only;		/* the chip never transmits */
+	bool stopped;			/* by bridge_stop(): the state below */
+	enum can_state last_state;	/* on the bus, before bridge_stop() */
+	struct can_berr_counter last_bec;
 	struct timespec restart_at;	/* CLOCK_MONOTONIC, with restart_ms */
 	/* toward the socket, while it refuses frames */
 	struct can_frame out[BRIDGE_OUT_QUEUE];
@@ -83,7 +86,8 @@ int bridge_restart(struct bridge *b);
  * Take the chip off the bus at shutdown, counting in chip_drops every
  * frame that never went out: those the chip still held (aborted), the
  * one held for a transmit buffer and those left unread in the socket.
- * The statistics stay readable until mcp2510_close().
+ * The statistics stay readable until mcp2510_close(), with the error
+ * state the chip had on the bus, not the stopped chip's.
  */
 void bridge_stop(struct bridge *b);
 /*
