@@ -70,7 +70,7 @@ else
 US_SIM_PARTS := $(US_DIR)/lib/sim_absent.c
 endif
 US_TOOL_SRCS := $(addprefix $(US_DIR)/tools/,cli.c cli_number.c cli_device.c \
-		cli_timing.c frame_text.c)
+		cli_filter.c cli_timing.c frame_text.c)
 US_CTL_SRCS := $(addprefix $(US_DIR)/tools/,mcp2510ctl.c ctl.c ctl_chip.c \
 		ctl_traffic.c ctl_sim.c)
 US_DAEMON_SRCS := $(addprefix $(US_DIR)/tools/,mcp2510d.c bridge.c)

@@ -3,8 +3,9 @@
  * Command-line handling shared by mcp2510ctl and mcp2510d: an option
  * scanner and one-line error messages (cli.c), the number grammar
  * (cli_number.c), the options that say which chip to use and how
- * (--device, --int, --clock, --variant, --bitrate, ...: cli_device.c)
- * and the bit timing they ask for (cli_timing.c).
+ * (--device, --int, --clock, --variant, --bitrate, ...: cli_device.c),
+ * the filter settings (cli_filter.c) and the bit timing they ask for
+ * (cli_timing.c).
  */
 #ifndef MCP2510_CLI_H
 #define MCP2510_CLI_H
@@ -132,6 +133,12 @@ int cli_filter_assign(struct cli_args *a, struct mcp2510_hw_filters *f,
 /* Take a --filter NAME=VALUE for cli_device_up(), or say what is wrong. */
 int cli_device_add_filter(struct cli_device *d, struct cli_args *a,
 			  const char *arg);
+/*
+ * The --filter settings on top of the filters @h holds, written to the
+ * chip; -1 after reporting.
+ */
+int cli_device_apply_filters(const struct cli_device *d, struct mcp2510 *h,
+			     struct cli_args *a);
 /* Open the chip, or report why not. */
 struct mcp2510 *cli_device_open(const struct cli_device *d,
 				struct cli_args *a, bool no_reset);
