@@ -49,6 +49,7 @@ help:
 	@echo "make unit      cmocka suites; make unit-asan: the same under ASan/UBSan"
 	@echo "make coverage  line coverage of the chip model (tests/sim)"
 	@echo "make userspace libmcp2510, mcp2510ctl, mcp2510d"
+	@echo "make install-userspace  them, man pages, unit (DESTDIR=, PREFIX=); make uninstall-userspace"
 	@echo "make modules   kernel modules (KDIR= selects the headers)"
 	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"

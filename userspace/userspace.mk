@@ -69,7 +69,8 @@ US_SIM_PARTS := $(US_DIR)/lib/sim_transport.c $(SIM_SRCS)
 else
 US_SIM_PARTS := $(US_DIR)/lib/sim_absent.c
 endif
-US_TOOL_SRCS := $(addprefix $(US_DIR)/tools/,cli.c frame_text.c)
+US_TOOL_SRCS := $(addprefix $(US_DIR)/tools/,cli.c cli_number.c cli_device.c \
+		cli_filter.c cli_timing.c frame_text.c)
 US_CTL_SRCS := $(addprefix $(US_DIR)/tools/,mcp2510ctl.c ctl.c ctl_chip.c \
 		ctl_traffic.c ctl_sim.c)
 US_DAEMON_SRCS := $(addprefix $(US_DIR)/tools/,mcp2510d.c bridge.c)
@@ -192,7 +193,7 @@ uninstall-userspace:
 	done
 
 userspace-check: userspace
-	@$(ENSURE) can-utils binutils groff-base
+	@$(ENSURE) can-utils binutils groff-base systemd
 	@$(TOP)/$(US_DIR)/check-userspace $(US_OUT) $(TOP)/$(US_DIR)/include/mcp2510.h
 
 # the same checks on the libgpiod 2 build

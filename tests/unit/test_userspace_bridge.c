@@ -373,6 +373,91 @@ static void test_rxq_drops_from_the_cmsg(void **state)
 	assert_int_equal(b.counts.rxq_drops, 7);
 }
 
+/* One chip alone on BUS, bridged, with control modes @ctrlmode. */
+static struct rig *lone_rig(const char *bus, uint32_t ctrlmode)
+{
+	struct rig *r = calloc(1, sizeof(*r));
+
+	assert_non_null(r);
+	r->chip = mcp2510_open(bus, NULL);
+	assert_non_null(r->chip);
+	assert_int_equal(mcp2510_set_bitrate(r->chip, 500000, 0), 0);
+	assert_int_equal(mcp2510_set_ctrlmode(r->chip, ctrlmode), 0);
+	assert_int_equal(mcp2510_up(r->chip), 0);
+	r->peer = mcp2510_open("sim", NULL);	/* elsewhere: rig_free closes it */
+	assert_non_null(r->peer);
+	assert_int_equal(socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_NONBLOCK, 0,
+				    r->sv), 0);
+	bridge_init(&r->b, r->chip, r->sv[0]);
+	return r;
+}
+
+/* Five frames from @base up written to the bridge, and taken in. */
+static void send_five(struct rig *r, canid_t base)
+{
+	canid_t i;
+
+	for (i = 0; i < 5; i++)
+		send_to_bridge(r, base + i);
+	pump(r, 5);
+}
+
+static char *stats_text(struct rig *r)
+{
+	char *text = NULL;
+	size_t len = 0;
+	FILE *out = open_memstream(&text, &len);
+
+	bridge_print_stats(&r->b, out, "mcp2510d");
+	fclose(out);
+	return text;
+}
+
+/*
+ * Frames that never went out are counted at shutdown: three in the
+ * chip's buffers (no node acknowledges a lone one), one held, one still
+ * in the socket.
+ */
+static void test_stop_counts_frames_given_up(void **state)
+{
+	struct rig *r = lone_rig("sim:lone", 0);
+	char *text;
+
+	(void)state;
+	send_five(r, 0x100);
+	assert_int_equal(r->b.counts.to_chip, 3);
+	bridge_stop(&r->b);
+	assert_false(mcp2510_is_up(r->chip));
+	assert_int_equal(r->b.counts.chip_drops, 5);
+	text = stats_text(r);
+	assert_non_null(strstr(text, " to-chip 3 "));
+	assert_non_null(strstr(text, " tx-aborted 5 "));
+	/* the state is the bus's before shutdown, not the stopped chip's */
+	assert_non_null(strstr(text, "stats bus: state ERROR-PASSIVE tec 128 "));
+	free(text);
+	rig_free(r);
+}
+
+/*
+ * A listen-only chip never transmits: what programs send on the
+ * interface is dropped and counted, as a listen-only CAN interface drops
+ * it, and the bridge keeps reading.
+ */
+static void test_listen_only_drops_what_comes_to_send(void **state)
+{
+	struct rig *r = lone_rig("sim:listen", CAN_CTRLMODE_LISTENONLY);
+	struct can_frame cf;
+
+	(void)state;
+	send_five(r, 0x200);
+	assert_int_equal(r->b.counts.to_chip, 0);
+	assert_int_equal(r->b.counts.ignored, 5);
+	assert_false(r->b.holding);
+	assert_int_equal(read(r->sv[0], &cf, sizeof(cf)), -1);
+	assert_int_equal(errno, EAGAIN);
+	rig_free(r);
+}
+
 static void test_stats_lines(void **state)
 {
 	struct rig *r = rig_new("sim:stats", 0);
@@ -411,6 +496,8 @@ int main(void)
 		cmocka_unit_test(test_rxq_drops_follow_the_kernel_total),
 		cmocka_unit_test(test_rxq_drops_from_the_cmsg),
 		cmocka_unit_test(test_stats_lines),
+		cmocka_unit_test(test_stop_counts_frames_given_up),
+		cmocka_unit_test(test_listen_only_drops_what_comes_to_send),
 	};
 
 	return cmocka_run_group_tests_name("userspace_bridge", tests, NULL, NULL);

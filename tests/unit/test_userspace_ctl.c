@@ -155,6 +155,102 @@ static void test_bittiming_contract(void **state)
 			      EXIT_FAIL, "bit rate 1000000 cannot be made from a 4000000 Hz oscillator");
 }
 
+/* Stderr of @r is exactly @n lines, each containing its part, in order. */
+static void assert_stderr_lines(const struct run *r, unsigned int n, ...)
+{
+	const char *p = r->err, *part;
+	va_list ap;
+
+	if (lines(r->err) != n)
+		fail_msg("stderr '%s': want %u lines", r->err, n);
+	va_start(ap, n);
+	while (n--) {
+		part = va_arg(ap, const char *);
+		p = strstr(p, part);
+		if (!p)
+			fail_msg("stderr '%s' lacks '%s'", r->err, part);
+	}
+	va_end(ap);
+}
+
+/*
+ * The bit-rate error as can-calc-bit-timing shows it (in %, one decimal):
+ * a warning when not exact, refused beyond CAN's 1.58 % oscillator
+ * tolerance; the sample point warned about when it misses the CiA one by
+ * more than 5 %.
+ */
+static void test_bittiming_errors_reported(void **state)
+{
+	struct run r = ctl("bittiming", "95000", NULL);
+
+	(void)state;
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "bitrate 95238 "));
+	assert_stderr_lines(&r, 1, "warning: bit rate 95238 is 0.3% off the 95000 asked for");
+	run_free(&r);
+	assert_one_line_error(ctl("bittiming", "1040000", NULL), EXIT_FAIL,
+			      "bit rate 1040000: the nearest a 16000000 Hz oscillator makes is 1000000, 3.8% off");
+	assert_one_line_error(ctl("bittiming", "300000", "--clock", "10M", NULL),
+			      EXIT_FAIL, "2.0% off, beyond the 1.58%");
+	r = ctl("bittiming", "500000", "--clock", "8M", NULL);
+	assert_int_equal(r.status, 0);
+	assert_stderr_lines(&r, 1, "warning: the CiA sample point 0.875 cannot be made at 500000 bit/s from a 8000000 Hz oscillator; using 0.750 (14.3% off)");
+	run_free(&r);
+	r = ctl("bittiming", "470000", NULL);
+	assert_int_equal(r.status, 0);
+	assert_stderr_lines(&r, 2, "0.1% off", "using 0.823 (5.9% off)");
+	run_free(&r);
+	/* the tools that bring the chip up say the same */
+	assert_one_line_error(ctl("--device", "sim", "-b", "1040000", "send", "123#",
+				  NULL), EXIT_FAIL, "3.8% off");
+}
+
+/* The simulator's environment, not the device string, is at fault. */
+static struct run ctl_with_env(const char *name, const char *value)
+{
+	struct run r;
+
+	setenv(name, value, 1);
+	r = ctl("--device", "sim", "info", NULL);
+	unsetenv(name);
+	return r;
+}
+
+static void test_sim_environment_named(void **state)
+{
+	(void)state;
+	assert_one_line_error(ctl_with_env("MCP2510_SIM_MISO", "bogus"), EXIT_FAIL,
+			      "MCP2510_SIM_MISO=bogus");
+	assert_one_line_error(ctl_with_env("MCP2510_SIM_BUS_ERRORS", "abc"),
+			      EXIT_FAIL, "MCP2510_SIM_BUS_ERRORS=abc");
+}
+
+/* What was taken without a word before, or meant something else. */
+static void test_inconsistencies(void **state)
+{
+	struct run r;
+
+	(void)state;
+	/* -1 (forever) is dump's; send would spin on a lone node */
+	assert_one_line_error(ctl("--device", "sim:alone", "send", "-t", "-1", "123#",
+				  NULL), EXIT_USAGE, "--timeout -1");
+	assert_one_line_error(ctl("--device", "sim", "dump", "-n", "0", NULL),
+			      EXIT_USAGE, "--count");
+	assert_one_line_error(ctl("--device", "sim", "--int", "gpiochip0:25", "info",
+				  NULL), EXIT_USAGE, "--int");
+	assert_one_line_error(ctl("bittiming", "-1", NULL), EXIT_USAGE,
+			      "'-1'");
+	assert_one_line_error(ctl("bittiming", "--sample-point", "1", NULL),
+			      EXIT_USAGE, "invalid value '1' for --sample-point");
+	r = ctl("help", "help", NULL);
+	assert_int_equal(r.status, 0);
+	assert_non_null(strstr(r.out, "Usage: mcp2510ctl"));
+	run_free(&r);
+	r = ctl("--clock", "16mhz", "bittiming", NULL);
+	assert_int_equal(r.status, 0);
+	run_free(&r);
+}
+
 static void test_chip_commands_on_sim(void **state)
 {
 	struct run r = ctl("--device", "sim", "selftest", NULL);
@@ -238,10 +334,9 @@ static void test_messages_name_the_cause(void **state)
 	assert_one_line_error(ctl("--device", "sim", "--int", "gpiochip0:", "info",
 				  NULL), EXIT_USAGE,
 			      "--int gpiochip0:: give the INT pin as CHIP:LINE");
-	/* a line name alone is looked up on every chip (the sim needs none) */
-	r = ctl("--device", "sim", "--int", "GPIO25", "info", NULL);
-	assert_int_equal(r.status, 0);
-	run_free(&r);
+	/* a line name alone is taken, but a simulated chip has no pin */
+	assert_one_line_error(ctl("--device", "sim", "--int", "GPIO25", "info", NULL),
+			      EXIT_USAGE, "--int GPIO25: a simulated chip");
 	/* a bare path is a spidev path */
 	assert_one_line_error(ctl("--device", "/nonexistent/spidev0.0", "info",
 				  NULL), EXIT_FAIL,
@@ -253,7 +348,7 @@ static void test_messages_name_the_cause(void **state)
 			      "sample point 0.500 at 500000 bit/s breaks the data sheet's PRSEG + PS1 >= PS2 (the sample point must come after the middle of the bit); the earliest here is 0.562");
 	r = ctl("bittiming", "125000", "--sample-point", "0.99", NULL);
 	assert_int_equal(r.status, 0);
-	assert_string_equal(r.err, "mcp2510ctl: warning: sample point 0.990 cannot be made at 125000 bit/s from a 16000000 Hz oscillator; using 0.875\n");
+	assert_string_equal(r.err, "mcp2510ctl: warning: sample point 0.990 cannot be made at 125000 bit/s from a 16000000 Hz oscillator; using 0.875 (11.6% off)\n");
 	assert_non_null(strstr(r.out, "sample-point 0.875 "));
 	run_free(&r);
 	r = ctl("--device", "sim", "--sample-point", "0.99", "--bitrate", "125k",
@@ -413,6 +508,9 @@ int main(void)
 		cmocka_unit_test(test_bad_frames_named_verbatim),
 		cmocka_unit_test(test_help_texts),
 		cmocka_unit_test(test_bittiming_contract),
+		cmocka_unit_test(test_bittiming_errors_reported),
+		cmocka_unit_test(test_sim_environment_named),
+		cmocka_unit_test(test_inconsistencies),
 		cmocka_unit_test(test_chip_commands_on_sim),
 		cmocka_unit_test(test_device_failures),
 		cmocka_unit_test(test_no_chip_no_answer),

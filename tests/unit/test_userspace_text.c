@@ -74,6 +74,26 @@ static void test_parse_remote(void **state)
 	assert_int_equal(cf.len, 8);
 }
 
+/* cansend's (can-utils lib.c) forms: a dot before any byte, raw DLC. */
+static void test_parse_cansend_extras(void **state)
+{
+	struct can_frame cf = parse_ok("123#.11");
+
+	(void)state;
+	assert_int_equal(cf.len, 1);
+	assert_int_equal(cf.data[0], 0x11);
+	assert_int_equal(parse_ok("123#11.").len, 1);
+	cf = parse_ok("123#1122334455667788_9");
+	assert_int_equal(cf.len, 8);
+	assert_int_equal(cf.len8_dlc, 9);
+	cf = parse_ok("123#11.22.33.44.55.66.77.88_f");
+	assert_int_equal(cf.len8_dlc, 15);
+	cf = parse_ok("123#R8_A");
+	assert_int_equal(cf.can_id, 0x123 | CAN_RTR_FLAG);
+	assert_int_equal(cf.len, 8);
+	assert_int_equal(cf.len8_dlc, 10);
+}
+
 static void assert_refused(const char *text, const char *reason_part)
 {
 	struct can_frame cf;
@@ -98,8 +118,11 @@ static void test_parse_refuses_bad_frames(void **state)
 	assert_refused("20000001#", "error frames");
 	assert_refused("123#1", "pairs of hex digits");
 	assert_refused("123#1G", "pairs of hex digits");
-	assert_refused("123#.11", "dot must follow");
-	assert_refused("123#11..22", "dot must follow");
+	assert_refused("123#11..22", "one dot");
+	assert_refused("123#11223344556677_9", "after 8 data bytes");
+	assert_refused("123#1122334455667788_8", "9 to F");
+	assert_refused("123#1122334455667788_9A", "one hex digit");
+	assert_refused("123#R7_9", "or R8");
 	assert_refused("123#010203040506070809", "more than 8");
 	assert_refused("123#R9", "0-8");
 	assert_refused("123#R12", "0-8");
@@ -133,6 +156,19 @@ static void test_format_like_candump(void **state)
 	cf.len = CAN_ERR_DLC;
 	cf.data[6] = 0x80;
 	assert_formats(&cf, "20000020#0000000000008000");
+}
+
+static void test_format_raw_dlc(void **state)
+{
+	struct can_frame cf = { .can_id = 0x123, .len = 8, .len8_dlc = 12 };
+	char buf[FRAME_TEXT_MAX];
+
+	(void)state;
+	frame_format(&cf, buf, sizeof(buf));
+	assert_string_equal(buf, "123#0000000000000000_C");
+	cf.can_id |= CAN_RTR_FLAG;
+	frame_format(&cf, buf, sizeof(buf));
+	assert_string_equal(buf, "123#R8_C");
 }
 
 static void test_format_parse_round_trip(void **state)
@@ -171,23 +207,32 @@ static void test_format_log_line(void **state)
 	assert_int_equal(frame_format_log(&cf, &ts, "x", buf, 10), -1);
 }
 
+/* One grammar: digits, k or M in either case, Hz in any case. */
 static void test_numbers(void **state)
 {
+	static const struct {
+		const char *text;
+		uint32_t want;
+	} good[] = {
+		{ "500000", 500000 }, { "500k", 500000 }, { "500K", 500000 },
+		{ "16M", 16000000 }, { "16mhz", 16000000 },
+		{ "16MHZ", 16000000 }, { "500kHz", 500000 },
+	};
+	static const char *const bad[] = {
+		"", "-5", "5x", "16G", "5000M", "4294967296",
+	};
 	uint32_t v;
+	size_t n;
 	int i;
 
 	(void)state;
-	assert_int_equal(cli_u32("500000", &v), 0);
-	assert_int_equal(v, 500000);
-	assert_int_equal(cli_u32("500k", &v), 0);
-	assert_int_equal(v, 500000);
-	assert_int_equal(cli_u32("16M", &v), 0);
-	assert_int_equal(v, 16000000);
-	assert_int_equal(cli_u32("", &v), -1);
-	assert_int_equal(cli_u32("-5", &v), -1);
-	assert_int_equal(cli_u32("5x", &v), -1);
-	assert_int_equal(cli_u32("5000M", &v), -1);
-	assert_int_equal(cli_u32("4294967296", &v), -1);
+	for (n = 0; n < sizeof(good) / sizeof(good[0]); n++) {
+		if (cli_u32(good[n].text, &v) || v != good[n].want)
+			fail_msg("'%s' not read as %u", good[n].text, good[n].want);
+	}
+	for (n = 0; n < sizeof(bad) / sizeof(bad[0]); n++)
+		if (!cli_u32(bad[n], &v))
+			fail_msg("'%s' taken as %u", bad[n], v);
 	assert_int_equal(cli_int("-1", true, &i), 0);
 	assert_int_equal(i, -1);
 	assert_int_equal(cli_int("-1", false, &i), -1);
@@ -204,7 +249,14 @@ static void test_sample_point(void **state)
 	assert_int_equal(sp, 875);
 	assert_int_equal(cli_sample_point("750", &sp), 0);
 	assert_int_equal(sp, 750);
-	assert_int_equal(cli_sample_point("1.5", &sp), -1);
+	/* a percentage needs its sign: 87.5 is none of the three forms */
+	assert_int_equal(cli_sample_point("87.5", &sp), -1);
+	/* tenths of a percent are 100 to 999, as can-calc-bit-timing -s */
+	assert_int_equal(cli_sample_point("1", &sp), -1);
+	assert_int_equal(cli_sample_point("99", &sp), -1);
+	assert_int_equal(cli_sample_point("1000", &sp), -1);
+	assert_int_equal(cli_sample_point("0.05", &sp), -1);
+	assert_int_equal(cli_sample_point("100%", &sp), -1);
 	assert_int_equal(cli_sample_point("0", &sp), -1);
 	assert_int_equal(cli_sample_point("abc", &sp), -1);
 	assert_int_equal(cli_sample_point("0.8x", &sp), -1);
@@ -217,7 +269,9 @@ int main(void)
 		cmocka_unit_test(test_parse_extended_and_lowercase),
 		cmocka_unit_test(test_parse_empty_dots_and_eight_bytes),
 		cmocka_unit_test(test_parse_remote),
+		cmocka_unit_test(test_parse_cansend_extras),
 		cmocka_unit_test(test_parse_refuses_bad_frames),
+		cmocka_unit_test(test_format_raw_dlc),
 		cmocka_unit_test(test_format_like_candump),
 		cmocka_unit_test(test_format_parse_round_trip),
 		cmocka_unit_test(test_format_log_line),

@@ -41,6 +41,16 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <time.h>
+/*
+ * struct timespec comes with C11's or POSIX's <time.h>; a strict C99
+ * program (-std=c99, no _POSIX_C_SOURCE) gets it from glibc's own header.
+ */
+#if (!defined(__STDC_VERSION__) || __STDC_VERSION__ < 201112L) && \
+	defined(__has_include)
+#if __has_include(<bits/types/struct_timespec.h>)
+#include <bits/types/struct_timespec.h>
+#endif
+#endif
 #include <linux/can.h>
 #include <linux/can/netlink.h>
 
@@ -205,7 +215,7 @@ enum mcp2510_event_type {
 	MCP2510_EVENT_TX_DONE,		/* frame: the frame that was sent */
 	MCP2510_EVENT_TX_ABORTED,	/* frame: the frame that was dropped */
 	MCP2510_EVENT_STATE,		/* state, bec */
-	MCP2510_EVENT_ERROR,		/* frame: a SocketCAN error frame */
+	MCP2510_EVENT_ERROR		/* frame: a SocketCAN error frame */
 };
 
 struct mcp2510_event {

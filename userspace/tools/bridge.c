@@ -28,6 +28,7 @@ void bridge_init(struct bridge *b, struct mcp2510 *h, int sock)
 	b->h = h;
 	b->sock = sock;
 	b->retry_ms = BRIDGE_RETRY_MIN_MS;
+	b->listen_only = h && mcp2510_get_ctrlmode(h) & CAN_CTRLMODE_LISTENONLY;
 }
 
 /* ---- time ---------------------------------------------------------------- */
@@ -301,6 +302,15 @@ static int from_socket(struct bridge *b)
 		b->counts.bus_off_drops++;
 		return 0;
 	}
+	/*
+	 * As a listen-only CAN interface drops what it is given: the chip
+	 * would hold it in a transmit buffer for ever, and with all three
+	 * taken the bridge would stop reading the socket.
+	 */
+	if (b->listen_only) {
+		b->counts.ignored++;
+		return 0;
+	}
 	b->holding = true;
 	return flush_held(b);
 }
@@ -346,19 +356,64 @@ int bridge_poll(struct bridge *b, int stop_fd, int timeout_ms)
 	return flush_out(b);
 }
 
+/* The error state and counters; bus-off as the bridge took it. */
+static void bus_state(struct bridge *b, enum can_state *state,
+		      struct can_berr_counter *bec)
+{
+	if (b->stopped) {
+		*state = b->last_state;
+		*bec = b->last_bec;
+		return;
+	}
+	*state = CAN_STATE_STOPPED;
+	bec->txerr = 0;
+	bec->rxerr = 0;
+	mcp2510_state(b->h, state, bec);
+	if (b->bus_off)
+		*state = CAN_STATE_BUS_OFF;
+}
+
+/* What the socket still holds for the chip, which will never take it. */
+static void drop_unread(struct bridge *b)
+{
+	struct can_frame cf;
+	ssize_t n;
+
+	while ((n = recv(b->sock, &cf, sizeof(cf), MSG_DONTWAIT)) > 0)
+		if (n == (ssize_t)sizeof(cf) && !(cf.can_id & CAN_ERR_FLAG))
+			b->counts.chip_drops++;
+}
+
+void bridge_stop(struct bridge *b)
+{
+	struct mcp2510_event ev;
+
+	bus_state(b, &b->last_state, &b->last_bec);
+	b->stopped = true;
+	if (b->holding) {
+		b->holding = false;
+		b->counts.chip_drops++;
+	}
+	/* the frames the chip still held come back aborted */
+	mcp2510_down(b->h);
+	while (!mcp2510_recv(b->h, &ev, 0))
+		if (ev.type == MCP2510_EVENT_TX_ABORTED)
+			b->counts.chip_drops++;
+	if (!b->listen_only)
+		drop_unread(b);
+}
+
 void bridge_print_stats(struct bridge *b, FILE *out, const char *prefix)
 {
 	const struct bridge_counts *c = &b->counts;
 	struct mcp2510_stats s;
-	struct can_berr_counter bec = { 0, 0 };
-	enum can_state state = CAN_STATE_STOPPED;
+	struct can_berr_counter bec;
+	enum can_state state;
 
 	rxq_refresh(b);
 	memset(&s, 0, sizeof(s));
 	mcp2510_stats(b->h, &s);
-	mcp2510_state(b->h, &state, &bec);
-	if (b->bus_off)
-		state = CAN_STATE_BUS_OFF;
+	bus_state(b, &state, &bec);
 	fprintf(out, "%s: stats frames: to-iface %llu to-chip %llu error-frames %llu ignored %llu\n",
 		prefix, (unsigned long long)c->to_socket,
 		(unsigned long long)c->to_chip,

@@ -3,7 +3,8 @@
  * mcp2510d's forwarding between a chip and a socket that carries one
  * struct can_frame per datagram (a CAN_RAW socket in the daemon): frames
  * and error frames the chip receives go to the socket, data and remote
- * frames read from the socket go to the chip.
+ * frames read from the socket go to the chip (or are dropped and counted
+ * as ignored, when the chip was brought up listen-only).
  *
  * Bus-off follows the kernel's can-dev: the chip is taken off the bus
  * (it would otherwise recover by itself after 128 x 11 recessive bits)
@@ -33,11 +34,13 @@ struct bridge_counts {
 	uint64_t to_socket;		/* data and remote frames written */
 	uint64_t error_frames;		/* error frames written */
 	uint64_t to_chip;		/* frames queued on the chip */
-	uint64_t ignored;		/* error frames and bad sizes read */
+	uint64_t ignored;		/* error frames, bad sizes, and all
+					 * frames of a listen-only chip */
 	uint64_t rxq_drops;		/* lost in the socket's receive queue */
 	uint64_t enobufs;		/* writes refused and tried again */
 	uint64_t socket_drops;		/* lost with the write queue full */
-	uint64_t chip_drops;		/* the chip aborted a frame */
+	uint64_t chip_drops;		/* aborted by the chip, or given up
+					 * at bridge_stop() */
 	uint64_t bus_off_drops;		/* read from the socket while bus-off */
 	uint64_t bus_offs;
 	uint64_t restarts;
@@ -51,6 +54,10 @@ struct bridge {
 	struct can_frame held;		/* read, waiting for a TX buffer */
 	bool holding;
 	bool bus_off;			/* the chip is off the bus */
+	bool listen_only;		/* the chip never transmits */
+	bool stopped;			/* by bridge_stop(): the state below */
+	enum can_state last_state;	/* on the bus, before bridge_stop() */
+	struct can_berr_counter last_bec;
 	struct timespec restart_at;	/* CLOCK_MONOTONIC, with restart_ms */
 	/* toward the socket, while it refuses frames */
 	struct can_frame out[BRIDGE_OUT_QUEUE];
@@ -75,6 +82,14 @@ int bridge_poll(struct bridge *b, int stop_fd, int timeout_ms);
  * restart is tried again later).
  */
 int bridge_restart(struct bridge *b);
+/*
+ * Take the chip off the bus at shutdown, counting in chip_drops every
+ * frame that never went out: those the chip still held (aborted), the
+ * one held for a transmit buffer and those left unread in the socket.
+ * The statistics stay readable until mcp2510_close(), with the error
+ * state the chip had on the bus, not the stopped chip's.
+ */
+void bridge_stop(struct bridge *b);
 /*
  * Take a new total of frames the socket's receive queue dropped (the
  * SO_RXQ_OVFL or SO_MEMINFO value, which wraps at 2^32) into

@@ -1,9 +1,11 @@
 /* SPDX-License-Identifier: GPL-2.0 */
 /*
  * Command-line handling shared by mcp2510ctl and mcp2510d: an option
- * scanner, number parsing, the options that say which chip to use and how
- * (--device, --int, --clock, --variant, --bitrate, ...), and one-line
- * error messages.
+ * scanner and one-line error messages (cli.c), the number grammar
+ * (cli_number.c), the options that say which chip to use and how
+ * (--device, --int, --clock, --variant, --bitrate, ...: cli_device.c),
+ * the filter settings (cli_filter.c) and the bit timing they ask for
+ * (cli_timing.c).
  */
 #ifndef MCP2510_CLI_H
 #define MCP2510_CLI_H
@@ -55,11 +57,20 @@ const struct cli_option *cli_last_option(void);
 void cli_error(FILE *err, const char *prog, const char *fmt, ...)
 	__attribute__((format(printf, 3, 4)));
 
-/* Decimal with an optional k/M suffix and Hz ("500k", "16M", "16MHz"); -1 if bad. */
+/* ---- the number grammar (cli_number.c) ---- */
+
+/*
+ * Decimal digits, then optionally k or M (either case: thousand,
+ * million), then optionally Hz (any case): "500000", "500k", "16M",
+ * "16MHz", "16mhz"; -1 if bad.
+ */
 int cli_u32(const char *s, uint32_t *out);
 /* A non-negative int, or -1 when @allow_forever and @s is "-1". */
 int cli_int(const char *s, bool allow_forever, int *out);
-/* "0.875", "87.5%" or "875" (tenths of a percent) to tenths; -1 if bad. */
+/*
+ * A sample point, "0.875", "87.5%" or "875" (whole tenths of a percent),
+ * 10.0 % to 99.9 %, to tenths of a percent; -1 if bad.
+ */
 int cli_sample_point(const char *s, uint32_t *out);
 
 /* ---- which chip, and how ---- */
@@ -107,8 +118,8 @@ int cli_device_set(struct cli_device *d, struct cli_args *a, int id,
 		   const char *value);
 /*
  * After the last option: what options say only together (--one-shot and
- * the variant, --spi-hz and the variant's SPI clock limit).  -1 after
- * reporting, for exit status EXIT_USAGE.
+ * the variant, --spi-hz and the variant's SPI clock limit, --int and a
+ * simulated chip).  -1 after reporting, for exit status EXIT_USAGE.
  */
 int cli_device_check(const struct cli_device *d, struct cli_args *a);
 /* Print "PROG VERSION". */
@@ -122,20 +133,32 @@ int cli_filter_assign(struct cli_args *a, struct mcp2510_hw_filters *f,
 /* Take a --filter NAME=VALUE for cli_device_up(), or say what is wrong. */
 int cli_device_add_filter(struct cli_device *d, struct cli_args *a,
 			  const char *arg);
+/*
+ * The --filter settings on top of the filters @h holds, written to the
+ * chip; -1 after reporting.
+ */
+int cli_device_apply_filters(const struct cli_device *d, struct mcp2510 *h,
+			     struct cli_args *a);
 /* Open the chip, or report why not. */
 struct mcp2510 *cli_device_open(const struct cli_device *d,
 				struct cli_args *a, bool no_reset);
 /*
  * mcp2510_bittiming_for(), saying why not (the oscillator, or which data
- * sheet rule a sample point breaks), and warning when the sample point
- * asked for could not be made exactly.  0 or -1.
+ * sheet rule a sample point breaks).  The bit-rate error is told as
+ * can-calc-bit-timing shows it, in % with one decimal: a warning when the
+ * rate is not exact, a refusal beyond CAN's oscillator tolerance of
+ * 1.58 %.  A warning too when the sample point misses the one asked for,
+ * or the CiA recommendation by more than 5 %.  0 or -1.
  */
 int cli_bittiming(struct cli_args *a, uint32_t osc_hz, uint32_t bitrate,
 		  uint32_t sp, struct can_bittiming *bt, uint8_t cnf[3]);
+/* cli_bittiming() for the options' bit rate and sample point. */
+int cli_device_timing(const struct cli_device *d, struct cli_args *a);
 /*
  * Apply the --filter settings on top of the filters the handle holds
  * (those the chip kept, see mcp2510_open()), program bit rate and
- * control modes and join the bus, or report.
+ * control modes and join the bus, or report.  The timing is not told
+ * about again: cli_device_timing() comes first.
  */
 int cli_device_up(const struct cli_device *d, struct mcp2510 *h,
 		  struct cli_args *a);

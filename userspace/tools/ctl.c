@@ -228,6 +228,9 @@ static int help_command(struct ctl *c)
 	for (i = 0; i < c->nitems; i++) {
 		if (c->items[i].opt)
 			continue;
+		/* "help help": help's own text is the usage */
+		if (!strcmp(c->items[i].value, "help"))
+			break;
 		cmd = find_command(c->items[i].value);
 		if (!cmd) {
 			cli_error(c->args.err, c->args.prog,

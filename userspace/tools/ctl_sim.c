@@ -53,6 +53,8 @@ static int nodes_open(struct ctl *c, const char *bus, struct node *n,
 	unsigned int i;
 
 	d.device = bus;
+	if (cli_device_timing(&d, &c->args))
+		return -1;
 	for (i = 0; i < count; i++) {
 		memset(&n[i], 0, sizeof(n[i]));
 		snprintf(n[i].label, sizeof(n[i].label), "%s.%u",

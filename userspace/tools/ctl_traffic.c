@@ -35,6 +35,7 @@ struct traffic_opts {
 	int timeout_ms;
 	const char *label;
 	bool accept_all;		/* selftest: every frame must come back */
+	bool may_wait_forever;		/* dump: --timeout -1 */
 	struct can_frame frames[CTL_MAX_ARGS];	/* send's, one per argument */
 };
 
@@ -44,9 +45,20 @@ static int traffic_option(struct ctl *c, void *ctx, int id, const char *value)
 
 	switch (id) {
 	case OPT_COUNT:
-		return cli_int(value, false, &t->count) ?
-			ctl_bad(c, "--count", value) : 0;
+		if (cli_int(value, false, &t->count))
+			return ctl_bad(c, "--count", value);
+		/* candump -n 0 is refused too */
+		if (!t->count)
+			cli_error(c->args.err, c->args.prog,
+				  "--count 0: count 1 or more frames, or leave it out for no limit");
+		return t->count ? 0 : -1;
 	case OPT_TIMEOUT:
+		if (!t->may_wait_forever && !strcmp(value, "-1")) {
+			/* on a lone node the retransmissions would never end */
+			cli_error(c->args.err, c->args.prog,
+				  "--timeout -1 (forever) is for dump only: give the milliseconds to wait");
+			return -1;
+		}
 		return cli_int(value, true, &t->timeout_ms) ?
 			ctl_bad(c, "--timeout", value) : 0;
 	case OPT_LABEL:
@@ -107,8 +119,11 @@ static int accept_all(struct ctl *c, struct mcp2510 *h)
 
 static struct mcp2510 *open_up(struct ctl *c, const struct traffic_opts *t)
 {
-	struct mcp2510 *h = cli_device_open(&c->dev, &c->args, false);
+	struct mcp2510 *h;
 
+	if (cli_device_timing(&c->dev, &c->args))
+		return NULL;
+	h = cli_device_open(&c->dev, &c->args, false);
 	if (!h)
 		return NULL;
 	if (t->accept_all && accept_all(c, h))
@@ -145,6 +160,9 @@ static int parse_frames(struct ctl *c, struct can_frame *frames)
 				  c->pos[i], why);
 			return -1;
 		}
+		/* a raw DLC goes out only with cc-len8-dlc on */
+		if (frames[i].len8_dlc)
+			c->dev.ctrlmode |= CAN_CTRLMODE_CC_LEN8_DLC;
 	}
 	return 0;
 }
@@ -212,8 +230,10 @@ const struct ctl_command ctl_send = {
 "1000).  FRAME in cansend syntax:\n"
 "  123#DEADBEEF   standard id (3 hex digits), up to 8 data bytes\n"
 "  12345678#11    extended id (8 hex digits)\n"
-"  123#           no data;   123#11.22.33   dots between bytes\n"
-"  123#R  123#R3  remote frame, optionally with its length\n",
+"  123#           no data;   123#11.22.33   a dot before any byte\n"
+"  123#R  123#R3  remote frame, optionally with its length\n"
+"  123#1122334455667788_9   123#R8_9\n"
+"                 after 8 bytes: a raw DLC 9 to F (sent with cc-len8-dlc on)\n",
 	.run = send_run,
 	.needs_device = true,
 	.options = timeout_options,
@@ -281,6 +301,7 @@ static int dump_run(struct ctl *c)
 
 	traffic_defaults(&t);
 	t.timeout_ms = -1;
+	t.may_wait_forever = true;
 	ret = ctl_parse(c, &ctl_dump, dump_options, traffic_option, &t, 0, 0,
 			&done);
 	if (done)

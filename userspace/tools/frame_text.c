@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0
 /* cansend syntax in, candump -L syntax out. */
-#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -45,31 +44,54 @@ static int parse_id(const char *text, size_t digits, canid_t *id,
 	return 0;
 }
 
+/*
+ * "_D" after a length of 8: the raw DLC 9..F that Classical CAN may carry
+ * (cansend's syntax, sent with cc-len8-dlc on).
+ */
+static int parse_raw_dlc(const char *p, struct can_frame *cf, const char **why)
+{
+	int d;
+
+	if (!p[0])
+		return 0;
+	if (p[0] != '_')
+		return fail(why, "data must be pairs of hex digits");
+	if (cf->len != CAN_MAX_DLEN)
+		return fail(why, "a raw DLC (_9 to _F) comes only after 8 data bytes or R8");
+	d = mcp2510_hex_digit(p[1]);
+	if (d < 0 || p[2])
+		return fail(why, "a raw DLC is one hex digit, _9 to _F");
+	if (d <= CAN_MAX_DLEN)
+		return fail(why, "a raw DLC is 9 to F (0-8 is the length itself)");
+	cf->len8_dlc = (__u8)d;
+	return 0;
+}
+
 static int parse_remote(const char *p, struct can_frame *cf, const char **why)
 {
 	cf->can_id |= CAN_RTR_FLAG;
 	if (!p[0])
 		return 0;
-	if (p[0] < '0' || p[0] > '8' || p[1])
+	if (p[0] < '0' || p[0] > '8' || (p[1] && p[1] != '_'))
 		return fail(why, "remote frame length must be one digit 0-8");
 	cf->len = (__u8)(p[0] - '0');
-	return 0;
+	if (p[1] && cf->len != CAN_MAX_DLEN)
+		return fail(why, "a raw DLC (_9 to _F) comes only after 8 data bytes or R8");
+	return parse_raw_dlc(p + 1, cf, why);
 }
 
+/* As cansend: one optional dot before each byte, or at the end. */
 static int parse_data(const char *p, struct can_frame *cf, const char **why)
 {
-	bool after_byte = false;
-
-	while (*p) {
+	while (*p && *p != '_') {
 		int hi, lo;
 
-		if (*p == '.') {
-			if (!after_byte)
-				return fail(why, "a dot must follow a data byte");
-			after_byte = false;
+		if (*p == '.')
 			p++;
-			continue;
-		}
+		if (!*p)
+			break;
+		if (*p == '.')
+			return fail(why, "one dot at most between data bytes");
 		hi = mcp2510_hex_digit(p[0]);
 		lo = hi < 0 ? -1 : mcp2510_hex_digit(p[1]);
 		if (lo < 0)
@@ -77,10 +99,9 @@ static int parse_data(const char *p, struct can_frame *cf, const char **why)
 		if (cf->len == CAN_MAX_DLEN)
 			return fail(why, "more than 8 data bytes");
 		cf->data[cf->len++] = (__u8)(hi << 4 | lo);
-		after_byte = true;
 		p += 2;
 	}
-	return 0;
+	return parse_raw_dlc(p, cf, why);
 }
 
 int frame_parse(const char *text, struct can_frame *cf, const char **why)
@@ -127,6 +148,10 @@ int frame_format(const struct can_frame *cf, char *buf, size_t len)
 			n += snprintf(tmp + n, sizeof(tmp) - (size_t)n, "%02X",
 				      cf->data[i]);
 	}
+	if (dlen == CAN_MAX_DLEN && cf->len8_dlc > CAN_MAX_DLEN &&
+	    cf->len8_dlc <= CAN_MAX_RAW_DLC && !(cf->can_id & CAN_ERR_FLAG))
+		n += snprintf(tmp + n, sizeof(tmp) - (size_t)n, "_%X",
+			      cf->len8_dlc);
 	tmp[n] = '\0';
 	return snprintf(buf, len, "%s", tmp);
 }

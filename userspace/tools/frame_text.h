@@ -11,21 +11,23 @@
 #include <time.h>
 #include <linux/can.h>
 
-/* Longest "ID#DATA" (error frame id, 8 data bytes) plus its NUL. */
-#define FRAME_TEXT_MAX		(8 + 1 + 2 * CAN_MAX_DLEN + 1)
+/* Longest "ID#DATA_D" (error frame id, 8 data bytes, raw DLC) plus NUL. */
+#define FRAME_TEXT_MAX		(8 + 1 + 2 * CAN_MAX_DLEN + 2 + 1)
 /* Longest candump -L line without the newline, plus its NUL. */
 #define FRAME_LOG_MAX(label_len)	(32 + (label_len) + FRAME_TEXT_MAX)
 
 /*
  * Parse cansend syntax: "123#DEADBEEF" (3 hex digits: standard id),
  * "12345678#11" (8 hex digits: extended id), "123#" (no data),
- * "123#11.22.33" (dots between bytes), "123#R" and "123#R3" (remote
- * frame, with its length).  Returns 0, or -1 with *why naming what is
- * wrong.  CAN FD ("##") and error frames are refused.
+ * "123#11.22.33" (one dot at most before each byte), "123#R" and
+ * "123#R3" (remote frame, with its length), and after 8 data bytes or R8
+ * a raw DLC "_9" to "_F" (len8_dlc), as can-utils' lib.c takes them.
+ * Returns 0, or -1 with *why naming what is wrong.  CAN FD ("##") and
+ * error frames are refused.
  */
 int frame_parse(const char *text, struct can_frame *cf, const char **why);
 
-/* "ID#DATA" as candump prints it; returns the length. */
+/* "ID#DATA" (with "_D" for a raw DLC) as candump prints it; the length. */
 int frame_format(const struct can_frame *cf, char *buf, size_t len);
 
 /* "(SECONDS.MICROS) LABEL ID#DATA"; returns the length, -1 if too long. */

@@ -105,6 +105,18 @@ static int parse_args(int argc, char **argv, struct daemon_opts *o)
 		cli_error(stderr, PROG, "no --iface given (e.g. --iface vcan0)");
 		return EXIT_USAGE;
 	}
+	if (!o->dev.device) {
+		cli_error(stderr, PROG,
+			  "no --device given (spidev:/dev/spidevB.C or sim)");
+		return EXIT_USAGE;
+	}
+	/* a bit rate CAN cannot use is a wrong command line, found first */
+	if (cli_device_timing(&o->dev, &a))
+		return EXIT_USAGE;
+	if (o->dev.ctrlmode & CAN_CTRLMODE_LISTENONLY)
+		cli_error(stderr, PROG,
+			  "note: --listen-only: frames sent on %s are dropped (counted as ignored)",
+			  o->iface);
 	return 0;
 }
 
@@ -232,6 +244,8 @@ static int run(struct mcp2510 *h, int sock, int sig_fd,
 		cli_error(stderr, PROG, "bridge: %s", strerror(errno));
 	else
 		fprintf(stderr, "%s: stopped\n", PROG);
+	/* count what never went out before telling the totals */
+	bridge_stop(&b);
 	bridge_print_stats(&b, stderr, PROG);
 	return ret < 0 ? EXIT_FAIL : 0;
 }
