@@ -51,6 +51,7 @@ help:
 	@echo "make userspace libmcp2510, mcp2510ctl, mcp2510d"
 	@echo "make modules   kernel modules (KDIR= selects the headers)"
 	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
+	@echo "make deb       Debian packages in build/deb; make deb-check (root)"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
 
 deps:
@@ -78,6 +79,7 @@ include userspace/userspace.mk
 include tests/unit/unit.mk
 include driver/driver.mk
 include tests/install/install.mk
+include tests/packaging/packaging.mk
 include tests/build/build.mk
 include tests/vm-arm64/vm-arm64.mk
 include tests/kmod/kmod.mk
