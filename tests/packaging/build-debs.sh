@@ -27,7 +27,7 @@ cd "$src"
 # "Unmet build dependencies: debhelper-compat (= 13) dh-sequence-dkms
 # ..." as names for apt (no versions, profiles or alternatives; apt takes
 # the one package providing a virtual name such as debhelper-compat).
-missing=$(dpkg-checkbuilddeps 2>&1 | sed -n 's/.*Unmet build dependencies: //p' |
+missing=$(dpkg-checkbuilddeps 2>&1 | sed -n 's/.*[Uu]nmet build dependencies: //p' |
 	sed -e 's/([^)]*)//g' -e 's/<[^>]*>//g' -e 's/|[^ ]*//g')
 # shellcheck disable=SC2086
 "$top/scripts/ensure-packages" lintian $missing
