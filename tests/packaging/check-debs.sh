@@ -44,16 +44,20 @@ if [ -z "$release" ]; then
 	[ -n "$release" ] || { echo "deb-check: no linux-headers-<release> package installed" >&2; exit 1; }
 fi
 
-debs=$(ls "$debdir"/*.deb | grep -v -- '-dbgsym_')
-pkgs=$(for d in $debs; do dpkg-deb -f "$d" Package; done)
-version=$(dpkg-deb -f "$(echo "$debs" | head -n 1)" Version)
-echo "deb-check: $(echo $pkgs) $version, DKMS for $release"
+debs='' pkgs=''
+for d in "$debdir"/*.deb; do
+	case $d in *-dbgsym_*) continue ;; esac
+	debs="$debs $d" pkgs="$pkgs $(dpkg-deb -f "$d" Package)"
+	version=$(dpkg-deb -f "$d" Version)
+done
+pkgs=${pkgs# }
+echo "deb-check: $pkgs $version, DKMS for $release"
 
 # A run that stopped half-way may have left them installed.
 installed=$(for p in $pkgs; do dpkg-query -W -f='${Status} ${Package}\n' "$p" 2>/dev/null; done |
-	sed -n 's/^install ok installed //p')
+	sed -n 's/^install ok installed //p' | tr '\n' ' ')
 # shellcheck disable=SC2086
-[ -z "$installed" ] || { echo "deb-check: purging $(echo $installed) first"; apt purge $installed >/dev/null; }
+[ -z "$installed" ] || { echo "deb-check: purging $installed first"; apt purge $installed >/dev/null; }
 
 # What the packages bring that is not there yet, and what is named after
 # the driver before they come.
@@ -118,7 +122,7 @@ done
 
 echo "deb-check: apt-get purge"
 # shellcheck disable=SC2086
-run purge apt purge $pkgs && pass "apt-get purge $(echo $pkgs)" || fail "apt-get purge"
+run purge apt purge $pkgs && pass "apt-get purge $pkgs" || fail "apt-get purge"
 for p in $pkgs; do
 	case $(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || :) in
 	"" | *not-installed) pass "$p purged" ;;
