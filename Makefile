@@ -52,6 +52,7 @@ help:
 	@echo "make install-userspace  them, man pages, unit (DESTDIR=, PREFIX=); make uninstall-userspace"
 	@echo "make modules   kernel modules (KDIR= selects the headers)"
 	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
+	@echo "make deb       Debian packages in build/deb; make deb-check (root)"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
 	@echo "make kernels-news  is there a kernel series newer than the ones tested?"
 
@@ -84,6 +85,7 @@ include userspace/userspace.mk
 include tests/unit/unit.mk
 include driver/driver.mk
 include tests/install/install.mk
+include tests/packaging/packaging.mk
 include tests/build/build.mk
 include tests/vm-arm64/vm-arm64.mk
 include tests/kmod/kmod.mk

@@ -19,6 +19,8 @@
 #                             the target)
 #   make uninstall [KDIR=dir] removes what make install (and
 #                             make install-userspace) put there, then depmod
+#   make install-dkms-source  dkms.conf and the driver's sources into
+#                             $(DESTDIR)/usr/src/mcp2510-<version> (packages)
 #
 # Every build runs in build/kbuild/<tag>/, a tree of symlinks to the
 # sources, so builds for several kernels never share objects and the
@@ -118,9 +120,12 @@ INSTALL_RELEASE = $(or $(call kernel_release,$(KDIR)),$(if \
 INSTALLED_MODULE_DIR = $(MOD_ROOT)/lib/modules/$(INSTALL_RELEASE)/extra
 run_depmod = $(if $(MOD_ROOT),@echo "$(1): staged under $(MOD_ROOT): depmod is for the target to run",depmod -a $(INSTALL_RELEASE))
 
+# The driver's own sources: what make install builds and DKMS needs.
+DRIVER_SOURCES := Kbuild uapi driver
+
 install:
 	@$(call need_kdir,install)
-	@$(call kbuild_tree,$(KBUILD_TREES)/install,Kbuild uapi driver)
+	@$(call kbuild_tree,$(KBUILD_TREES)/install,$(DRIVER_SOURCES))
 	$(MAKE) -C $(KDIR) M=$(KBUILD_TREES)/install MCP2510_DRIVER_ONLY=1 modules
 	$(MAKE) -C $(KDIR) M=$(KBUILD_TREES)/install MCP2510_DRIVER_ONLY=1 \
 		INSTALL_MOD_DIR=extra INSTALL_MOD_PATH=$(MOD_ROOT) \
@@ -138,6 +143,19 @@ uninstall: uninstall-userspace
 	for d in "$(MOD_ROOT)/lib/modules" "$(MOD_ROOT)/lib"; do \
 		[ -z "$(MOD_ROOT)" ] || rmdir "$$d" 2>/dev/null || break; done
 	$(call run_depmod,uninstall)
+
+# dkms.conf and the sources it builds from (no tests, no build products) in
+# $(DESTDIR)/usr/src/mcp2510-<version>, where DKMS looks for them: what a
+# package ships, where `dkms add .` would copy the whole checkout.
+DKMS_VERSION := $(shell sed -n 's/^PACKAGE_VERSION="\(.*\)"$$/\1/p' $(TOP)/dkms.conf)
+DKMS_SOURCE_DIR = $(DESTDIR)/usr/src/mcp2510-$(DKMS_VERSION)
+
+.PHONY: install-dkms-source
+install-dkms-source:
+	@cd $(TOP) && find $(DRIVER_SOURCES) -type f \( -name '*.[ch]' \
+		-o -name Kbuild -o -name core.mk \) | sort | while read -r f; do \
+		install -D -m 644 "$$f" "$(DKMS_SOURCE_DIR)/$$f" || exit 1; done
+	install -m 644 $(TOP)/dkms.conf $(DKMS_SOURCE_DIR)/
 
 # ---- modules-check --------------------------------------------------------
 

@@ -1,6 +1,9 @@
 # dts/dts.mk: device-tree overlays, the binding, and their checks.
 #
 #   make dt-overlays   compile dts/*-overlay.dts to build/dts/overlays/*.dtbo
+#   make install-dt-overlays   the Raspberry Pi ones (all but the generic
+#                      overlays, which are edited for each board first) into
+#                      $(DESTDIR)$(OVERLAYDIR), /boot/firmware/overlays
 #   make dt-check      compile, apply, validate every overlay against the
 #                      binding, and make sure the broken ones in
 #                      dts/test/bad/ are rejected (see dts/dt-check.sh)
@@ -9,7 +12,9 @@
 # under build/, so that every machine validates with the same schemas and
 # prints the same messages (dts/test/bad/ matches on them).
 
-DTS_PACKAGES := device-tree-compiler python3-venv
+DTS_PACKAGES := device-tree-compiler
+# dt-validate's venv (dt-check only: dt-overlays needs dtc alone)
+DTSCHEMA_PACKAGES := python3-venv
 
 DTS_DIR := $(TOP)/dts
 DTS_OUT := $(BUILD)/dts
@@ -39,8 +44,19 @@ $(DTS_OUT)/overlays/%.dtbo: $(DTS_DIR)/%-overlay.dts | dt-deps
 
 dt-overlays: $(DTS_OVERLAYS)
 
+# Where the Raspberry Pi firmware reads overlays on Raspberry Pi OS bookworm
+# and later (docs/packaging.md); /boot/overlays before.
+OVERLAYDIR ?= /boot/firmware/overlays
+DTS_RPI_OVERLAYS := $(filter-out %-generic.dtbo,$(DTS_OVERLAYS))
+
+.PHONY: install-dt-overlays
+install-dt-overlays: $(DTS_RPI_OVERLAYS)
+	install -d $(DESTDIR)$(OVERLAYDIR)
+	install -m 644 $^ $(DESTDIR)$(OVERLAYDIR)/
+
 # The stamp names the version, so changing DTSCHEMA_VERSION reinstalls.
 $(DTSCHEMA_STAMP): | dt-deps
+	@$(ENSURE) $(DTSCHEMA_PACKAGES)
 	@echo "dt-check: installing dtschema $(DTSCHEMA_VERSION) into $(DTSCHEMA_VENV)"
 	@rm -rf $(DTSCHEMA_VENV)
 	@$(DTSCHEMA_PYTHON) -m venv $(DTSCHEMA_VENV)
