@@ -36,7 +36,7 @@ MANDIR ?= $(PREFIX)/share/man
 SYSTEMDUNITDIR ?= $(PREFIX)/lib/systemd/system
 US_EXAMPLEDIR ?= $(PREFIX)/share/doc/mcp2510d/examples
 
-US_PACKAGES := pkg-config libgpiod-dev
+US_PACKAGES := $(CC_PACKAGES) libgpiod-dev
 US_CPPFLAGS := -I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib \
 	       -I$(TOP)/$(US_DIR)/tools -I$(TOP)/uapi -I$(TOP)/driver/core \
 	       -I$(TOP)/tests/sim

@@ -37,7 +37,7 @@ VMTEST_DEPS += vm-guest-tools
 .PHONY: vm-guest-tools
 vm-guest-tools: $(VM_GUEST_TOOLS)
 
-$(VM_GUEST_BIN)/%: $(VM_DIR)/guest/%.c $(wildcard $(VM_DIR)/guest/*.h)
+$(VM_GUEST_BIN)/%: $(VM_DIR)/guest/%.c $(wildcard $(VM_DIR)/guest/*.h) | cc-deps
 	@mkdir -p $(@D)
 	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) -O2 -o $@ $<
 
