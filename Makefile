@@ -45,7 +45,7 @@ CC_PACKAGES := build-essential pkg-config
 # Packages every host-side build and test needs.
 HOST_PACKAGES := $(CC_PACKAGES) libcmocka-dev libgpiod-dev
 
-.PHONY: all check deps cc-deps help
+.PHONY: all check deps cc-deps help clean distclean
 all: unit-build userspace
 
 help:
@@ -58,12 +58,25 @@ help:
 	@echo "make modules   kernel modules (KDIR= selects the headers)"
 	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
+	@echo "make clean     remove build products, keep downloads, kernels and roots"
+	@echo "make distclean remove all of build/"
 
 deps:
 	@$(ENSURE) $(HOST_PACKAGES)
 
 cc-deps:
 	@$(ENSURE) $(CC_PACKAGES)
+
+# What make clean keeps under build/: downloads, unpacked kernels, roots
+# and the debug kernel, slow to fetch or make and independent of the
+# sources.  Fragments add their own paths (relative to build/).
+CLEAN_KEEP :=
+
+clean:
+	@$(TOP)/scripts/clean-build $(BUILD) $(CLEAN_KEEP)
+
+distclean:
+	rm -rf $(BUILD)
 
 # $(call option_stamp,FILE,TEXT): a rule keeping TEXT in FILE, rewritten
 # only when TEXT changes.  What a build option affects depends on the

@@ -95,6 +95,7 @@ userspace: $(US_A) $(US_SO) $(US_CTL) $(US_DAEMON) $(US_PC) $(US_UNIT)
 # A libgpiod of the other major version, unpacked under build/libgpiod/vN
 # (its headers in include/, its libgpiod.pc in pkgconfig/).
 US_GPIOD_DIR := $(BUILD)/libgpiod
+CLEAN_KEEP += libgpiod
 $(US_GPIOD_DIR)/v%/pkgconfig/libgpiod.pc:
 	@$(TOP)/scripts/fetch-libgpiod $* $(US_GPIOD_DIR) >/dev/null
 

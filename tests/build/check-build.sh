@@ -14,7 +14,9 @@
 # - a build on a system without dpkg runs no package manager; with dpkg,
 #   a missing package is named and nothing installed, unless INSTALL_DEPS=1
 #   (or a goal that installs, in its sub-makes too); every target that
-#   compiles asks for the compiler first.
+#   compiles asks for the compiler first;
+# - make clean removes products and keeps downloads, kernels and roots;
+#   make distclean removes all of build/.
 #
 # usage: tests/build/check-build.sh KDIR   (a kernel build tree)
 set -eu
@@ -197,5 +199,28 @@ PATH="$tmp/stub:$PATH" mk demo-sub demo VM_DIR="$tmp/vm" VMTEST_DEPS=userspace-d
 grep -q 'apt-get .*install .*libgpiod-dev' "$tmp/calls" 2>/dev/null &&
 	pass "make demo installs what its sub-make needs" ||
 	{ show demo-sub; fail "make demo's sub-make did not install libgpiod-dev"; }
+
+echo "build-check: make clean and distclean"
+# A scratch build/ with what make clean keeps and what it removes.
+b=$tmp/clean
+kept="kernels/6.1/release kernels/apt/bookworm/status kernels/debug/stamp
+libgpiod/v2/pkgconfig/libgpiod.pc arm64/debian/release arm64/apt/status
+trixie/root/etc/debian_version vm/busybox/bin/busybox"
+products="userspace/bin/mcp2510ctl unit/test_core_tx modules/6.1/mcp2510.ko
+vm/6.1/initramfs.cpio.gz arm64/initramfs.cpio.gz checkpatch/report.txt"
+for f in $kept $products; do
+	mkdir -p "$b/${f%/*}" && : >"$b/$f"
+done
+mk clean clean BUILD="$b"
+gone=
+for f in $kept; do [ -e "$b/$f" ] || gone="$gone $f"; done
+left=
+for f in $products; do [ ! -e "$b/$f" ] || left="$left $f"; done
+[ -z "$gone" ] && pass "make clean keeps downloads, kernels and roots" ||
+	{ show clean; fail "make clean removed:$gone"; }
+[ -z "$left" ] && [ ! -e "$b/userspace" ] && pass "make clean removes build products" ||
+	{ show clean; fail "make clean left:$left"; }
+mk distclean distclean BUILD="$b"
+[ ! -e "$b" ] && pass "make distclean removes all of build/" || fail "make distclean left $b"
 
 tally build-check

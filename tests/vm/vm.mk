@@ -18,6 +18,8 @@
 # KDIR for a kernel: $(call vm_kdir,6.12), or tests/vm/kernel-info 6.12 kdir.
 
 VM_DIR := $(TOP)/tests/vm
+# The Debian kernels, the debug kernel, and the busybox package.
+CLEAN_KEEP += kernels vm/busybox
 # The debug kernel last: make check builds it in the background, and the
 # Debian kernels are fetched while that build ends.
 VM_KERNELS ?= 6.1 6.12 rt debug
