@@ -190,6 +190,7 @@ done
 # A goal that installs (make demo) keeps doing so in the sub-make it
 # starts for VMTEST_DEPS: a rig of stubs makes the rest of it a no-op.
 mkdir -p "$tmp/vm"
+cp "$top/tests/vm/kernels" "$tmp/vm/"
 for tool in fetch-kernel vm-run; do
 	printf '#!/bin/sh\nexit 0\n' >"$tmp/vm/$tool"
 	chmod +x "$tmp/vm/$tool"
