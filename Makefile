@@ -21,9 +21,12 @@ WARN := -Wall -Wextra $(if $(filter 1,$(WERROR)),-Werror)
 # target with INSTALL_DEPS=1); other targets name what is missing and stop
 # (scripts/ensure-packages).  Without dpkg nothing is checked: Buildroot,
 # Yocto and other distributions bring their own dependencies.
+# A sub-make keeps the decision of the make that started it: its own goals
+# (demo's VMTEST_DEPS) are not the ones that decided.
 ifneq ($(filter deps check demo bench,$(MAKECMDGOALS)),)
 INSTALL_DEPS := 1
 endif
+INSTALL_DEPS ?= $(MCP2510_INSTALL_DEPS)
 export MCP2510_INSTALL_DEPS := $(filter 1,$(INSTALL_DEPS))
 
 # Quiet by default ("  CC      file"); V=1 prints every command.
@@ -36,10 +39,13 @@ endif
 SANITIZE := -fsanitize=address,undefined -fno-omit-frame-pointer \
 	    -fno-sanitize-recover=all
 
+# What compiling C takes: a new machine may have no compiler.  Every rule
+# that runs $(CC) comes after cc-deps (or a -deps target naming these).
+CC_PACKAGES := build-essential pkg-config
 # Packages every host-side build and test needs.
-HOST_PACKAGES := build-essential pkg-config libcmocka-dev libgpiod-dev
+HOST_PACKAGES := $(CC_PACKAGES) libcmocka-dev libgpiod-dev
 
-.PHONY: all check deps help
+.PHONY: all check deps cc-deps help clean distclean
 all: unit-build userspace
 
 help:
@@ -55,9 +61,25 @@ help:
 	@echo "make deb       Debian packages in build/deb; make deb-check (root)"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
 	@echo "make kernels-news  is there a kernel series newer than the ones tested?"
+	@echo "make clean     remove build products, keep downloads, kernels and roots"
+	@echo "make distclean remove all of build/"
 
 deps:
 	@$(ENSURE) $(HOST_PACKAGES)
+
+cc-deps:
+	@$(ENSURE) $(CC_PACKAGES)
+
+# What make clean keeps under build/: downloads, unpacked kernels, roots
+# and the debug kernel, slow to fetch or make and independent of the
+# sources.  Fragments add their own paths (relative to build/).
+CLEAN_KEEP :=
+
+clean:
+	@$(TOP)/scripts/clean-build $(BUILD) $(CLEAN_KEEP)
+
+distclean:
+	rm -rf $(BUILD)
 
 # $(call option_stamp,FILE,TEXT): a rule keeping TEXT in FILE, rewritten
 # only when TEXT changes.  What a build option affects depends on the

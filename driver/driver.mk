@@ -10,7 +10,9 @@
 #                             there (tests/vm/kernel-info), into
 #                             build/modules/<6.1|6.12|debug|rt>/
 #   make modules-check        warning-free builds against Debian's 6.1 and 6.12
-#                             headers with W=1 and sparse (C=1), no simulator
+#                             headers (the rig's, unpacked under build/kernels
+#                             by tests/vm/fetch-kernel) with W=1 and sparse
+#                             (C=1), no simulator
 #                             code in mcp2510.ko, and checkpatch.pl --strict
 #                             on every kernel source
 #   make install [KDIR=dir]   mcp2510.ko into <modules>/extra, then depmod;
@@ -159,13 +161,9 @@ install-dkms-source:
 
 # ---- modules-check --------------------------------------------------------
 
-# Debian's kernels the module must build for: the 6.1 ABI linux-headers-amd64
-# depends on, and the newest 6.12 apt offers.
-HEADERS_6_1 = $(shell dpkg-query -W -f='$${Depends}' linux-headers-amd64 2>/dev/null | \
-	       sed -n 's/.*\(linux-headers-6\.1\.[^ ,]*-amd64\).*/\1/p')
-HEADERS_6_12 = $(shell apt-cache search --names-only \
-		'^linux-headers-6\.12\..*\+deb12-amd64$$' 2>/dev/null | \
-		cut -d' ' -f1 | sort -V | tail -n 1)
+# Debian's kernels the module must build for: the rig's 6.1 and 6.12, with
+# the headers fetch-kernel unpacked under build/kernels (vm.mk's vm_kdir).
+MODULES_CHECK_KERNELS := 6.1 6.12
 
 # Sources checkpatch reads: everything compiled into a kernel module here.
 KERNEL_SOURCES = $(sort $(wildcard $(TOP)/driver/*.[ch] $(TOP)/driver/core/*.[ch] \
@@ -173,12 +171,12 @@ KERNEL_SOURCES = $(sort $(wildcard $(TOP)/driver/*.[ch] $(TOP)/driver/core/*.[ch
 
 CHECKPATCH_DIR := $(BUILD)/checkpatch
 CHECKPATCH := $(CHECKPATCH_DIR)/checkpatch.pl
-LINUX_SOURCE := /usr/src/linux-source-6.1.tar.xz
 
+# From Debian's linux-source-6.1, fetched into build/kernels/source.
 $(CHECKPATCH):
-	@$(ENSURE) linux-source-6.1 xz-utils perl
+	@$(ENSURE) xz-utils perl
 	mkdir -p $(CHECKPATCH_DIR)
-	tar -xJf $(LINUX_SOURCE) -C $(CHECKPATCH_DIR) --strip-components=2 \
+	tar -xJf $$($(TOP)/tests/vm/fetch-linux-source) -C $(CHECKPATCH_DIR) --strip-components=2 \
 		--wildcards '*/scripts/checkpatch.pl' '*/scripts/spelling.txt' \
 		'*/scripts/const_structs.checkpatch'
 	touch $@
@@ -205,18 +203,18 @@ sim_free = nm -g --defined-only $(1)/tests/sim/*.o | awk 'NF == 3 { print $$3 }'
 	if [ -s $(1)/sim.leaks ]; then cat $(1)/sim.leaks; \
 		echo "modules-check: simulator code in mcp2510.ko" >&2; exit 1; fi
 
-# $(call strict_build,HEADERS-PACKAGE,TAG): a full build with W=1 and sparse
-# on every file, in a fresh tree of its own (several people may run this at
-# once); any compiler, sparse or modpost warning fails it.
+# $(call strict_build,KERNEL): a full build with W=1 and sparse on every
+# file against the rig kernel KERNEL's headers, in a fresh tree of its own
+# (several people may run this at once); any compiler, sparse or modpost
+# warning fails it.
 define strict_build
-	@[ -n "$(1)" ] || { echo "modules-check: no $(2) headers package found" >&2; exit 1; }
-	@$(ENSURE) $(1)
-	@echo "== $(1): W=1 C=1"
-	@mkdir -p $(KBUILD_TREES); \
-	tree=$$(mktemp -d $(KBUILD_TREES)/check-$(2).XXXXXX); \
+	@kdir=$(call vm_kdir,$(1)) || exit 1; \
+	echo "== $(1): W=1 C=1, KDIR=$$kdir"; \
+	mkdir -p $(KBUILD_TREES); \
+	tree=$$(mktemp -d $(KBUILD_TREES)/check-$(1).XXXXXX); \
 	log=$$tree.log; \
 	$(call kbuild_tree,$$tree,$(KBUILD_SOURCES)) && \
-	if ! $(MAKE) -C /usr/src/$(1) M=$$tree W=1 C=1 modules >$$log 2>&1; then \
+	if ! $(MAKE) -C $$kdir M=$$tree W=1 C=1 modules >$$log 2>&1; then \
 		cat $$log; echo "modules-check: $(1) build failed" >&2; exit 1; fi; \
 	if grep -q 'warning:\|error:\|WARNING:\|ERROR:' $$log; then \
 		grep 'warning:\|error:\|WARNING:\|ERROR:' $$log; \
@@ -226,21 +224,15 @@ define strict_build
 	@echo "$(1): no warnings, no simulator code in mcp2510.ko"
 endef
 
-# apt's lists may be missing on a fresh machine: the 6.12 name comes from
-# them.  Only the targets that install packages fetch them.
-APT_UPDATE := [ "$(MCP2510_INSTALL_DEPS)" != 1 ] || if [ "$$(id -u)" -eq 0 ]; then apt-get update -q; \
-	      else sudo apt-get update -q; fi >/dev/null
-
-modules-check: modules-deps
-	@$(ENSURE) sparse linux-headers-amd64
-	@[ -n "$(HEADERS_6_12)" ] || $(APT_UPDATE)
+modules-check: modules-deps $(addprefix vm-kernel-,$(MODULES_CHECK_KERNELS))
+	@$(ENSURE) sparse
 	@$(MAKE) --no-print-directory modules-check-build
 	@$(MAKE) --no-print-directory checkpatch
 
 .PHONY: modules-check-build
 modules-check-build:
-	$(call strict_build,$(HEADERS_6_1),6.1)
-	$(call strict_build,$(HEADERS_6_12),6.12)
+	$(call strict_build,6.1)
+	$(call strict_build,6.12)
 
 CHECK_STEPS += modules-check
 # The rig boots what modules-rig leaves in build/modules/<kernel>/.

@@ -24,6 +24,7 @@ DTS_OVERLAYS := $(patsubst $(DTS_DIR)/%-overlay.dts,$(DTS_OUT)/overlays/%.dtbo,\
 DTSCHEMA_VERSION ?= 2026.9
 DTSCHEMA_PYTHON ?= python3
 DTSCHEMA_VENV := $(BUILD)/dtschema-venv
+CLEAN_KEEP += dtschema-venv
 DTSCHEMA_STAMP := $(DTSCHEMA_VENV)/.dtschema-$(DTSCHEMA_VERSION)
 
 .PHONY: dt-deps dt-overlays dt-check dt-clean

@@ -36,7 +36,7 @@ MANDIR ?= $(PREFIX)/share/man
 SYSTEMDUNITDIR ?= $(PREFIX)/lib/systemd/system
 US_EXAMPLEDIR ?= $(PREFIX)/share/doc/mcp2510d/examples
 
-US_PACKAGES := pkg-config libgpiod-dev
+US_PACKAGES := $(CC_PACKAGES) libgpiod-dev
 US_CPPFLAGS := -I$(TOP)/$(US_DIR)/include -I$(TOP)/$(US_DIR)/lib \
 	       -I$(TOP)/$(US_DIR)/tools -I$(TOP)/uapi -I$(TOP)/driver/core \
 	       -I$(TOP)/tests/sim
@@ -96,6 +96,7 @@ userspace: $(US_A) $(US_SO) $(US_CTL) $(US_DAEMON) $(US_PC) $(US_UNIT)
 # A libgpiod of the other major version, unpacked under build/libgpiod/vN
 # (its headers in include/, its libgpiod.pc in pkgconfig/).
 US_GPIOD_DIR := $(BUILD)/libgpiod
+CLEAN_KEEP += libgpiod
 $(US_GPIOD_DIR)/v%/pkgconfig/libgpiod.pc:
 	@$(TOP)/scripts/fetch-libgpiod $* $(US_GPIOD_DIR) >/dev/null
 

@@ -23,7 +23,7 @@ CORE_STRICT := -Wvla -Wshadow -Wmissing-prototypes -Wstrict-prototypes \
 CORE_CHECK_OBJS := $(patsubst $(CORE_DIR)/%.c,$(BUILD)/core/%.o,$(CORE_SRCS))
 
 $(BUILD)/core/%.o: $(TOP)/$(CORE_DIR)/%.c $(wildcard $(TOP)/$(CORE_DIR)/*.h) \
-		$(TOP)/uapi/linux/can/mcp2510.h
+		$(TOP)/uapi/linux/can/mcp2510.h | cc-deps
 	@mkdir -p $(@D)
 	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) $(CORE_STRICT) $(CORE_CPPFLAGS) -c $< -o $@
 

@@ -6,8 +6,8 @@
 #                      option changes, package managers left alone
 
 .PHONY: build-check
-build-check: modules-deps
-	@$(ENSURE) $(HOST_PACKAGES) $(HEADERS_6_12) binutils
-	@$(TOP)/tests/build/check-build.sh /usr/src/$(HEADERS_6_12)
+build-check: modules-deps vm-kernel-6.12
+	@$(ENSURE) $(HOST_PACKAGES) binutils
+	@$(TOP)/tests/build/check-build.sh $(call vm_kdir,6.12)
 
 CHECK_STEPS += build-check

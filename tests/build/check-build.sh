@@ -12,7 +12,11 @@
 #   back, sanitizer flags and back, other CPPFLAGS; the same options twice
 #   rebuild nothing;
 # - a build on a system without dpkg runs no package manager; with dpkg,
-#   a missing package is named and nothing installed, unless INSTALL_DEPS=1.
+#   a missing package is named and nothing installed, unless INSTALL_DEPS=1
+#   (or a goal that installs, in its sub-makes too); every target that
+#   compiles asks for the compiler first;
+# - make clean removes products and keeps downloads, kernels and roots;
+#   make distclean removes all of build/.
 #
 # usage: tests/build/check-build.sh KDIR   (a kernel build tree)
 set -eu
@@ -164,7 +168,7 @@ if PATH="$tmp/stub:$PATH" mk missing userspace US_OUT="$tmp/missing-us"; then
 elif [ -e "$tmp/calls" ]; then
 	cat "$tmp/calls"
 	fail "a plain build ran a package manager"
-elif grep -q 'missing package(s): pkg-config libgpiod-dev' "$tmp/missing.log" &&
+elif grep -q 'missing package(s): build-essential pkg-config libgpiod-dev' "$tmp/missing.log" &&
 	grep -q 'INSTALL_DEPS=1' "$tmp/missing.log"; then
 	pass "a missing package is named, nothing installed"
 else
@@ -174,5 +178,50 @@ fi
 PATH="$tmp/stub:$PATH" mk missing-install userspace US_OUT="$tmp/missing-us" INSTALL_DEPS=1 || :
 grep -q 'apt-get .*install .*pkg-config libgpiod-dev' "$tmp/calls" 2>/dev/null &&
 	pass "INSTALL_DEPS=1 installs them" || { show missing-install; fail "INSTALL_DEPS=1 did not run apt-get"; }
+# Every target that compiles asks for the compiler first: a new machine
+# has none.  Built in a scratch BUILD, stopped by apt-get's stub.
+for target in sim-check core-check unit-build userspace vm-guest-tools; do
+	rm -f "$tmp/calls"
+	PATH="$tmp/stub:$PATH" mk "cc-$target" "$target" BUILD="$tmp/cc" INSTALL_DEPS=1 || :
+	grep -q 'apt-get .*install .*build-essential' "$tmp/calls" 2>/dev/null &&
+		pass "make $target INSTALL_DEPS=1 installs the compiler" ||
+		{ show "cc-$target"; fail "make $target INSTALL_DEPS=1 did not ask for build-essential"; }
+done
+# A goal that installs (make demo) keeps doing so in the sub-make it
+# starts for VMTEST_DEPS: a rig of stubs makes the rest of it a no-op.
+mkdir -p "$tmp/vm"
+cp "$top/tests/vm/kernels" "$tmp/vm/"
+for tool in fetch-kernel vm-run; do
+	printf '#!/bin/sh\nexit 0\n' >"$tmp/vm/$tool"
+	chmod +x "$tmp/vm/$tool"
+done
+rm -f "$tmp/calls"
+PATH="$tmp/stub:$PATH" mk demo-sub demo VM_DIR="$tmp/vm" VMTEST_DEPS=userspace-deps BUILD="$tmp/demo" || :
+grep -q 'apt-get .*install .*libgpiod-dev' "$tmp/calls" 2>/dev/null &&
+	pass "make demo installs what its sub-make needs" ||
+	{ show demo-sub; fail "make demo's sub-make did not install libgpiod-dev"; }
+
+echo "build-check: make clean and distclean"
+# A scratch build/ with what make clean keeps and what it removes.
+b=$tmp/clean
+kept="kernels/6.1/release kernels/apt/bookworm/status kernels/debug/stamp
+libgpiod/v2/pkgconfig/libgpiod.pc arm64/debian/release arm64/apt/status
+trixie/root/etc/debian_version vm/busybox/bin/busybox"
+products="userspace/bin/mcp2510ctl unit/test_core_tx modules/6.1/mcp2510.ko
+vm/6.1/initramfs.cpio.gz arm64/initramfs.cpio.gz checkpatch/report.txt"
+for f in $kept $products; do
+	mkdir -p "$b/${f%/*}" && : >"$b/$f"
+done
+mk clean clean BUILD="$b"
+gone=
+for f in $kept; do [ -e "$b/$f" ] || gone="$gone $f"; done
+left=
+for f in $products; do [ ! -e "$b/$f" ] || left="$left $f"; done
+[ -z "$gone" ] && pass "make clean keeps downloads, kernels and roots" ||
+	{ show clean; fail "make clean removed:$gone"; }
+[ -z "$left" ] && [ ! -e "$b/userspace" ] && pass "make clean removes build products" ||
+	{ show clean; fail "make clean left:$left"; }
+mk distclean distclean BUILD="$b"
+[ ! -e "$b" ] && pass "make distclean removes all of build/" || fail "make distclean left $b"
 
 tally build-check

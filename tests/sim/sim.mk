@@ -18,7 +18,7 @@ SIM_EMPTY :=
 SIM_SPACE := $(SIM_EMPTY) $(SIM_EMPTY)
 SIM_CHECK_OBJS := $(patsubst $(SIM_DIR)/%.c,$(BUILD)/sim/%.o,$(SIM_SRCS))
 
-$(BUILD)/sim/%.o: $(TOP)/$(SIM_DIR)/%.c $(wildcard $(TOP)/$(SIM_DIR)/*.h)
+$(BUILD)/sim/%.o: $(TOP)/$(SIM_DIR)/%.c $(wildcard $(TOP)/$(SIM_DIR)/*.h) | cc-deps
 	@mkdir -p $(@D)
 	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) $(SIM_STRICT) $(SIM_CPPFLAGS) -c $< -o $@
 

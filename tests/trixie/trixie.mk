@@ -21,6 +21,7 @@
 
 TRIXIE_DIR := $(TOP)/tests/trixie
 TRIXIE_ROOT := $(BUILD)/trixie/root
+CLEAN_KEEP += trixie
 # What runs inside: the same Makefile, building into the root's /build,
 # with warnings errors when they are here (make check).
 TRIXIE_MAKE := make --no-print-directory -C /src BUILD=/build WERROR=$(WERROR)

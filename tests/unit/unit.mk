@@ -110,7 +110,7 @@ unit_run = fail=; for t in $(UNIT_SUITES); do \
 
 .PHONY: unit unit-asan coverage unit-deps
 unit-deps:
-	@$(ENSURE) libcmocka-dev
+	@$(ENSURE) $(CC_PACKAGES) libcmocka-dev
 
 unit: unit-build
 	@$(call unit_run,unit)

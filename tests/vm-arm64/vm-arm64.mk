@@ -15,6 +15,8 @@
 
 VM_ARM64_DIR := $(TOP)/tests/vm-arm64
 VM_ARM64_KDIR := $(BUILD)/arm64/kdir
+CLEAN_KEEP += arm64/apt arm64/debian arm64/Image arm64/kdir arm64/sysroot \
+	arm64/sysroot.stamp
 VM_ARM64_PACKAGES := qemu-system-arm device-tree-compiler cpio gzip \
 	gcc-aarch64-linux-gnu binutils-aarch64-linux-gnu
 

@@ -2,7 +2,8 @@
 #
 #   make vm-kernels          fetch Debian's 6.1, 6.12 and 6.12 PREEMPT_RT,
 #                            build the debug kernel
-#   make vm-kernel-6.1 | vm-kernel-6.12 | vm-kernel-debug | vm-kernel-rt
+#   make vm-kernel-6.1 | vm-kernel-6.12 | vm-kernel-debug | vm-kernel-rt |
+#        vm-kernel-7.3       one of them (the Debian ones: tests/vm/kernels)
 #   make initramfs           base initramfs for each kernel in VM_KERNELS
 #   make vmtest              the suite on every kernel in VM_KERNELS (default
 #                            6.1, 6.12, rt and debug): what make check runs
@@ -15,16 +16,19 @@
 # Fragments whose output the guest picks up (build/modules/<kernel>/*.ko,
 # build/userspace/bin) add their make target to VMTEST_DEPS; vmtest runs
 # them after the kernels exist, with VM_KERNELS in the environment.
-# KDIR for a kernel: $(call vm_kdir,6.12), or tests/vm/kernel-info 6.12 kdir.
+# KDIR for a kernel: tests/vm/kernel-info 6.12 kdir; in a recipe,
+# $(call vm_kdir,6.12), a shell expression (failing when it is not there).
 
 VM_DIR := $(TOP)/tests/vm
+# The Debian kernels, the debug kernel, and the busybox package.
+CLEAN_KEEP += kernels vm/busybox
 # The debug kernel last: make check builds it in the background, and the
 # Debian kernels are fetched while that build ends.
 VM_KERNELS ?= 6.1 6.12 rt debug
 VMTEST_DEPS +=
 export VM_KERNELS
 
-vm_kdir = $(shell $(VM_DIR)/kernel-info $(1) kdir)
+vm_kdir = $$($(VM_DIR)/kernel-info $(1) kdir)
 
 # Small programs the scenarios run in the guest (tests/vm/guest/NAME.c),
 # for what the stock tools cannot show; vm-run copies build/vm/guest-bin
@@ -37,17 +41,20 @@ VMTEST_DEPS += vm-guest-tools
 .PHONY: vm-guest-tools
 vm-guest-tools: $(VM_GUEST_TOOLS)
 
-$(VM_GUEST_BIN)/%: $(VM_DIR)/guest/%.c $(wildcard $(VM_DIR)/guest/*.h)
+$(VM_GUEST_BIN)/%: $(VM_DIR)/guest/%.c $(wildcard $(VM_DIR)/guest/*.h) | cc-deps
 	@mkdir -p $(@D)
 	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) -O2 -o $@ $<
 
-.PHONY: vm-kernels vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug vm-kernel-rt initramfs \
+# The Debian kernels fetch-kernel unpacks (with their headers).
+VM_DEBIAN_KERNELS := $(shell awk '!/^\#/ { print $$1 }' $(VM_DIR)/kernels)
+
+.PHONY: vm-kernels $(addprefix vm-kernel-,$(VM_DEBIAN_KERNELS)) vm-kernel-debug initramfs \
 	vm-kernel-debug-background vmtest vmtest-release vmtest-debug vmtest-one \
 	vm-info
 
 vm-kernels: vm-kernel-6.1 vm-kernel-6.12 vm-kernel-debug vm-kernel-rt
 
-vm-kernel-6.1 vm-kernel-6.12 vm-kernel-rt:
+$(addprefix vm-kernel-,$(VM_DEBIAN_KERNELS)):
 	@$(VM_DIR)/fetch-kernel $(@:vm-kernel-%=%)
 
 vm-kernel-debug:
@@ -67,7 +74,7 @@ vmtest-one:
 	@VM_SELFTEST=0 VM_EVERY_SCENARIO=1 $(VM_DIR)/vmtest -k "$(or $(KERNEL),6.1)" $(abspath $(SCENARIO))
 
 vm-info:
-	@for k in 6.1 6.12 debug rt; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
+	@for k in $(VM_DEBIAN_KERNELS) debug; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
 vmtest-release:
 	@$(MAKE) --no-print-directory vmtest VM_KERNELS="6.1 6.12 rt"
 
