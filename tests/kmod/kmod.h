@@ -48,6 +48,7 @@ struct mcp2510_sim_chip {
 	struct mcp2510_sim_harness_counters harness;
 	u64 stalls_baseline;		/* the bus clock's stalls at the last reset */
 	u32 spi_fail_left;
+	u32 rts_fail_len;		/* debugfs "spi_errors_rts" */
 	bool powered;			/* as last set through debugfs "power" */
 	u8 rts;				/* TXnRTS levels as set through debugfs "rts" */
 	struct software_node swnode;

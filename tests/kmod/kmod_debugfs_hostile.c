@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * The hostile-chip faults of /sys/kernel/debug/mcp2510-sim/chipN/: an INT
- * line stuck low, garbage on MISO of a chosen kind, and a pulse on the
- * RESET pin.  They exist to prove that a driver survives a broken board
- * or a chip that resets behind its back; docs/simulator.md describes them.
+ * line stuck low, garbage on MISO of a chosen kind, a pulse on the RESET
+ * pin, and an RTS that reaches the chip although its transfer fails.
+ * They exist to prove that a driver survives a broken board or a chip
+ * that resets behind its back; docs/simulator.md describes them.
  */
 #include <linux/debugfs.h>
 #include <linux/fs.h>
@@ -157,6 +158,31 @@ static const struct file_operations pattern_fops = {
 	.release = single_release,
 };
 
+static int spi_errors_rts_get(void *data, u64 *val)
+{
+	struct mcp2510_sim_chip *chip = data;
+
+	mcp2510_sim_lock(chip->sim);
+	*val = chip->rts_fail_len;
+	mcp2510_sim_unlock(chip->sim);
+	return 0;
+}
+
+static int spi_errors_rts_set(void *data, u64 val)
+{
+	struct mcp2510_sim_chip *chip = data;
+
+	if (val > U32_MAX)
+		return -EINVAL;
+	mcp2510_sim_lock(chip->sim);
+	chip->rts_fail_len = val;
+	mcp2510_sim_unlock(chip->sim);
+	return 0;
+}
+
+DEFINE_DEBUGFS_ATTRIBUTE(spi_errors_rts_fops, spi_errors_rts_get,
+			 spi_errors_rts_set, "%llu\n");
+
 void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
 					struct dentry *dir)
 {
@@ -164,4 +190,6 @@ void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
 	debugfs_create_file_unsafe("reset", 0600, dir, chip, &reset_fops);
 	debugfs_create_file("spi_corrupt_pattern", 0600, dir, chip,
 			    &pattern_fops);
+	debugfs_create_file_unsafe("spi_errors_rts", 0600, dir, chip,
+				   &spi_errors_rts_fops);
 }

@@ -184,6 +184,32 @@ static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
 	return 0;
 }
 
+/*
+ * The spi_errors_rts fault, after @msg reached the chip: an RTS whose
+ * message fails all the same, and spi_errors for the messages after it.
+ * True when it claims @msg.
+ */
+static bool rts_fails(struct mcp2510_sim_chip *chip, struct spi_message *msg)
+{
+	const struct spi_transfer *xfer;
+	bool fail = false;
+	const u8 *tx;
+
+	xfer = list_first_entry_or_null(&msg->transfers, struct spi_transfer,
+					transfer_list);
+	tx = xfer ? xfer->tx_buf : NULL;
+	mcp2510_sim_lock(chip->sim);
+	if (chip->rts_fail_len && tx && xfer->len &&
+	    (tx[0] & ~MCP2510_RTS_ALL) == MCP2510_INSTR_RTS) {
+		chip->spi_fail_left = chip->rts_fail_len - 1;
+		chip->rts_fail_len = 0;
+		chip->harness.spi_failed++;
+		fail = true;
+	}
+	mcp2510_sim_unlock(chip->sim);
+	return fail;
+}
+
 static int transfer_one_message(struct spi_controller *ctlr,
 				struct spi_message *msg)
 {
@@ -195,6 +221,8 @@ static int transfer_one_message(struct spi_controller *ctlr,
 	chip = &sim->chips[spi_get_chipselect(msg->spi, 0)];
 	ret = account_message(chip, msg, &timing) ? -EIO :
 	      run_message(chip, msg, &timing);
+	if (!ret && rts_fails(chip, msg))
+		ret = -EIO;
 	msg->status = ret;
 	spi_finalize_current_message(ctlr);
 	return ret;
