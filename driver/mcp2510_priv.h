@@ -154,6 +154,7 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv);
 netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev);
 void mcp2510_tx_work(struct work_struct *work);
 void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot);
+void mcp2510_tx_retry(struct mcp2510_priv *priv);
 void mcp2510_tx_flush(struct mcp2510_priv *priv);
 void mcp2510_tx_wake_queue(struct mcp2510_priv *priv);
 void mcp2510_tx_forget(struct mcp2510_priv *priv);
