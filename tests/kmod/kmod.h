@@ -15,6 +15,7 @@
 #ifndef MCP2510_SIM_KMOD_H
 #define MCP2510_SIM_KMOD_H
 
+#include <linux/clk-provider.h>
 #include <linux/gpio/driver.h>
 #include <linux/hrtimer.h>
 #include <linux/irq_work.h>
@@ -49,6 +50,10 @@ struct mcp2510_sim_chip {
 	u64 stalls_baseline;		/* the bus clock's stalls at the last reset */
 	u32 spi_fail_left;
 	u32 rts_fail_len;		/* debugfs "spi_errors_rts" */
+	struct clk_hw osc;		/* with osc_clk: the oscillator (kmod_osc.c) */
+	struct clk_lookup *osc_lookup;
+	char osc_name[24];
+	u32 osc_fail_left;
 	bool powered;			/* as last set through debugfs "power" */
 	u8 rts;				/* TXnRTS levels as set through debugfs "rts" */
 	struct software_node swnode;
@@ -99,6 +104,7 @@ struct mcp2510_sim {
 	u32 osc_hz;
 	unsigned int int_trigger;	/* IRQ_TYPE_* the chips' INT lines get */
 	bool gpio_controller;		/* the chips offer their pins as GPIOs */
+	bool osc_clk;			/* the oscillators are clocks (kmod_osc.c) */
 	bool wakeup_source;		/* the chips' INT may wake the system */
 	bool wakeup_filter;		/* and their CNF3.WAKFIL is asked for */
 	struct property_entry props[5];	/* the chips' software node, terminated */
@@ -175,6 +181,10 @@ void mcp2510_sim_suspend_attach(struct mcp2510_sim *sim);
 void mcp2510_sim_suspend_detach(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				     struct dentry *parent);
+int mcp2510_sim_osc_add(struct mcp2510_sim_chip *chip);
+void mcp2510_sim_osc_remove(struct mcp2510_sim_chip *chip);
+void mcp2510_sim_debugfs_osc_create(struct mcp2510_sim_chip *chip,
+				    struct dentry *dir);
 void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
 					struct dentry *dir);
 

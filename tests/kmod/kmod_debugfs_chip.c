@@ -401,4 +401,5 @@ void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				   &int_edge_miss_fops);
 	debugfs_create_file_unsafe("rts", 0600, dir, chip, &rts_fops);
 	mcp2510_sim_debugfs_hostile_create(chip, dir);
+	mcp2510_sim_debugfs_osc_create(chip, dir);
 }

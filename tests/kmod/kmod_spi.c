@@ -336,6 +336,11 @@ static int add_chip_devices(struct mcp2510_sim *sim, const char *driver,
 			dev_err(sim->root, "chip %u: no SPI device: %d\n", n, ret);
 			return ret;
 		}
+		ret = sim->osc_clk ? mcp2510_sim_osc_add(&sim->chips[n]) : 0;
+		if (ret) {
+			dev_err(sim->root, "chip %u: no oscillator: %d\n", n, ret);
+			return ret;
+		}
 	}
 	return 0;
 }
@@ -384,6 +389,10 @@ out_put:
 /* Unbinds the drivers, removes the devices and frees the controller. */
 void mcp2510_sim_spi_unregister(struct mcp2510_sim *sim)
 {
+	unsigned int n;
+
 	spi_unregister_controller(sim->ctlr);
 	sim->ctlr = NULL;
+	for (n = 0; n < sim->nchips; n++)
+		mcp2510_sim_osc_remove(&sim->chips[n]);
 }
