@@ -165,6 +165,7 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data);
 unsigned long mcp2510_irq_trigger(struct mcp2510_priv *priv);
 
 /* watch.c */
+void mcp2510_watch_init(struct mcp2510_priv *priv);
 void mcp2510_watch_start(struct mcp2510_priv *priv);
 void mcp2510_watch_stop(struct mcp2510_priv *priv);
 void mcp2510_watch_storm(struct mcp2510_priv *priv);

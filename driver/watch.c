@@ -184,11 +184,15 @@ void mcp2510_watch_storm(struct mcp2510_priv *priv)
 	mod_delayed_work(system_wq, &w->work, 0);
 }
 
+void mcp2510_watch_init(struct mcp2510_priv *priv)
+{
+	INIT_DELAYED_WORK(&priv->watch.work, mcp2510_watch_work);
+}
+
 void mcp2510_watch_start(struct mcp2510_priv *priv)
 {
 	struct mcp2510_watch *w = &priv->watch;
 
-	INIT_DELAYED_WORK(&w->work, mcp2510_watch_work);
 	mcp2510_lock(priv);
 	w->running = true;
 	w->polling = false;
