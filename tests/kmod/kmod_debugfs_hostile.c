@@ -158,30 +158,7 @@ static const struct file_operations pattern_fops = {
 	.release = single_release,
 };
 
-static int spi_errors_rts_get(void *data, u64 *val)
-{
-	struct mcp2510_sim_chip *chip = data;
-
-	mcp2510_sim_lock(chip->sim);
-	*val = chip->rts_fail_len;
-	mcp2510_sim_unlock(chip->sim);
-	return 0;
-}
-
-static int spi_errors_rts_set(void *data, u64 val)
-{
-	struct mcp2510_sim_chip *chip = data;
-
-	if (val > U32_MAX)
-		return -EINVAL;
-	mcp2510_sim_lock(chip->sim);
-	chip->rts_fail_len = val;
-	mcp2510_sim_unlock(chip->sim);
-	return 0;
-}
-
-DEFINE_DEBUGFS_ATTRIBUTE(spi_errors_rts_fops, spi_errors_rts_get,
-			 spi_errors_rts_set, "%llu\n");
+MCP2510_SIM_CHIP_U32_ATTR(spi_errors_rts, rts);
 
 void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
 					struct dentry *dir)

@@ -26,8 +26,8 @@ static int osc_prepare(struct clk_hw *hw)
 	int ret = 0;
 
 	mcp2510_sim_lock(chip->sim);
-	if (chip->osc_fail_left) {
-		chip->osc_fail_left--;
+	if (chip->fails.osc) {
+		chip->fails.osc--;
 		ret = -EIO;
 	}
 	mcp2510_sim_unlock(chip->sim);
@@ -77,30 +77,7 @@ void mcp2510_sim_osc_remove(struct mcp2510_sim_chip *chip)
 	chip->osc_lookup = NULL;
 }
 
-static int osc_errors_get(void *data, u64 *val)
-{
-	struct mcp2510_sim_chip *chip = data;
-
-	mcp2510_sim_lock(chip->sim);
-	*val = chip->osc_fail_left;
-	mcp2510_sim_unlock(chip->sim);
-	return 0;
-}
-
-static int osc_errors_set(void *data, u64 val)
-{
-	struct mcp2510_sim_chip *chip = data;
-
-	if (val > U32_MAX)
-		return -EINVAL;
-	mcp2510_sim_lock(chip->sim);
-	chip->osc_fail_left = val;
-	mcp2510_sim_unlock(chip->sim);
-	return 0;
-}
-
-DEFINE_DEBUGFS_ATTRIBUTE(osc_errors_fops, osc_errors_get, osc_errors_set,
-			 "%llu\n");
+MCP2510_SIM_CHIP_U32_ATTR(osc_errors, osc);
 
 void mcp2510_sim_debugfs_osc_create(struct mcp2510_sim_chip *chip,
 				    struct dentry *dir)

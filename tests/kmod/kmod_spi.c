@@ -60,9 +60,9 @@ static bool account_message(struct mcp2510_sim_chip *chip,
 	if (mode == SPI_MODE_1 || mode == SPI_MODE_2)
 		chip->harness.spi_mode_errors++;
 	chip->harness.spi_overspeed += overspeed;
-	fail = chip->spi_fail_left > 0;
+	fail = chip->fails.spi > 0;
 	if (fail) {
-		chip->spi_fail_left--;
+		chip->fails.spi--;
 		chip->harness.spi_failed++;
 	}
 	*timing = chip->sim->spi.timing;
@@ -199,10 +199,10 @@ static bool rts_fails(struct mcp2510_sim_chip *chip, struct spi_message *msg)
 					transfer_list);
 	tx = xfer ? xfer->tx_buf : NULL;
 	mcp2510_sim_lock(chip->sim);
-	if (chip->rts_fail_len && tx && xfer->len &&
+	if (chip->fails.rts && tx && xfer->len &&
 	    (tx[0] & ~MCP2510_RTS_ALL) == MCP2510_INSTR_RTS) {
-		chip->spi_fail_left = chip->rts_fail_len - 1;
-		chip->rts_fail_len = 0;
+		chip->fails.spi = chip->fails.rts - 1;
+		chip->fails.rts = 0;
 		chip->harness.spi_failed++;
 		fail = true;
 	}
