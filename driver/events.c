@@ -92,8 +92,6 @@ static void mcp2510_count_error(struct mcp2510_priv *priv,
 		else
 			stats->rx_errors++;
 	}
-	if (cf->can_id & CAN_ERR_LOSTARB)
-		priv->can.can_stats.arbitration_lost++;
 	if (cf->can_id & CAN_ERR_ACK)
 		stats->tx_errors++;
 	if ((cf->can_id & CAN_ERR_CRTL) &&

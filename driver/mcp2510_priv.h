@@ -155,6 +155,7 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv);
 netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev);
 void mcp2510_tx_work(struct work_struct *work);
 void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot);
+void mcp2510_tx_retry(struct mcp2510_priv *priv);
 void mcp2510_tx_flush(struct mcp2510_priv *priv);
 void mcp2510_tx_wake_queue(struct mcp2510_priv *priv);
 void mcp2510_tx_forget(struct mcp2510_priv *priv);
@@ -165,6 +166,7 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data);
 unsigned long mcp2510_irq_trigger(struct mcp2510_priv *priv);
 
 /* watch.c */
+void mcp2510_watch_init(struct mcp2510_priv *priv);
 void mcp2510_watch_start(struct mcp2510_priv *priv);
 void mcp2510_watch_stop(struct mcp2510_priv *priv);
 void mcp2510_watch_storm(struct mcp2510_priv *priv);

@@ -69,10 +69,33 @@ static void mcp2510_xceiver_disable(struct mcp2510_priv *priv)
 		regulator_disable(priv->xceiver);
 }
 
+/*
+ * A resume that could not power the chip left it off (with the interface
+ * up but off the bus): bringing the interface up again powers it.  The
+ * chip lost its registers, so it is reset as at probe.
+ */
+static int mcp2510_power_again(struct mcp2510_priv *priv)
+{
+	int ret;
+
+	if (priv->powered)
+		return 0;
+	ret = mcp2510_power_on(priv);
+	if (ret) {
+		netdev_err(priv->ndev, "cannot power the chip: %pe\n",
+			   ERR_PTR(ret));
+		return ret;
+	}
+	return mcp2510_chip_reset_sleep(priv);
+}
+
 int mcp2510_hw_up(struct mcp2510_priv *priv)
 {
 	int ret;
 
+	ret = mcp2510_power_again(priv);
+	if (ret)
+		return ret;
 	ret = mcp2510_xceiver_enable(priv);
 	if (ret)
 		return ret;

@@ -144,12 +144,15 @@ static int mcp2510_suspend(struct device *dev)
 		 * Detached, the queue stays stopped until resume attaches it
 		 * (mcp2510_tx_wake() checks); netif_tx_disable() waits for a
 		 * start_xmit running on another CPU, and no bus-off restart
-		 * may wake the queue or start the chip meanwhile.
+		 * may wake the queue or start the chip meanwhile.  A bus-off
+		 * the IRQ thread reports while hw_down waits for it schedules
+		 * the restart again: it is cancelled once more after.
 		 */
 		netif_device_detach(priv->ndev);
 		netif_tx_disable(priv->ndev);
 		cancel_delayed_work_sync(&priv->can.restart_work);
 		mcp2510_hw_down(priv);
+		cancel_delayed_work_sync(&priv->can.restart_work);
 		if (device_may_wakeup(dev)) {
 			ret = mcp2510_wake_enable(priv);
 			if (!ret)

@@ -163,6 +163,7 @@ static int mcp2510_setup_netdev(struct mcp2510_priv *priv,
 	mutex_init(&priv->lock);
 	spin_lock_init(&priv->tx_lock);
 	INIT_WORK(&priv->tx_work, mcp2510_tx_work);
+	mcp2510_watch_init(priv);
 
 	priv->can.clock.freq = osc_hz / 2;
 	priv->can.bittiming_const = &mcp2510_bittiming_const;
@@ -266,6 +267,7 @@ out_power_off:
 out_del_rx:
 	mcp2510_rx_del(priv);
 out_free_candev:
+	mutex_destroy(&priv->lock);
 	free_candev(ndev);
 	return ret;
 }
@@ -280,6 +282,7 @@ static void mcp2510_remove(struct spi_device *spi)
 	mcp2510_gpio_unregister(priv);
 	mcp2510_power_off(priv);
 	mcp2510_rx_del(priv);
+	mutex_destroy(&priv->lock);
 	free_candev(ndev);
 }
 

@@ -26,13 +26,15 @@
  * - every other frame, and every frame of a pass with no such
  *   interrupt (a later pass of an edge-triggered loop, polling), gets
  *   that pass's "now": it was in the chip when the flags were read;
- * - error frames found by a pass get its "now" too.
+ * - error frames found by a pass get its "now" too, and so do the echoes
+ *   of the frames whose completion it read: stamped by the stack when
+ *   NAPI hands them on, they would carry a later time than frames read
+ *   after them in the same hold of the chip lock.
  * So no frame is stamped before it ended, and stamps never decrease in
  * the order frames are queued: the queue, in the chip's order, is in
  * timestamp order without sorting it.  The stamps are the host's clock
  * (CLOCK_REALTIME in skb->tstamp, what SO_TIMESTAMP and software receive
- * stamping read), not the chip's: the chip has none.  Echoes keep the
- * stack's own stamp.
+ * stamping read), not the chip's: the chip has none.
  */
 #include <linux/can/dev.h>
 #include <linux/can/rx-offload.h>
@@ -88,6 +90,7 @@ unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 	if (!skb)
 		return 0;
 	len = can_skb_get_data_len(skb);
+	skb->tstamp = mcp2510_rx_stamp_event(priv);
 	can_rx_offload_get_echo_skb_queue_tail(&priv->offload, slot, NULL);
 	return len;
 }

@@ -98,6 +98,40 @@ static struct sk_buff *mcp2510_tx_fifo_pop(struct mcp2510_priv *priv)
 }
 
 /*
+ * Give back the skb mcp2510_tx_fifo_pop() took, at the head again: no
+ * buffer is free yet.  It stays counted, so the queue stays as it is.
+ */
+static void mcp2510_tx_fifo_unpop(struct mcp2510_priv *priv,
+				  struct sk_buff *skb)
+{
+	spin_lock_bh(&priv->tx_lock);
+	priv->tx_fifo_head = (priv->tx_fifo_head + MCP2510_TXB_COUNT - 1) %
+			     MCP2510_TXB_COUNT;
+	priv->tx_fifo[priv->tx_fifo_head] = skb;
+	priv->tx_fifo_len++;
+	priv->tx_loading = false;
+	spin_unlock_bh(&priv->tx_lock);
+}
+
+/* Under tx_lock: frames wait for the work, which may have given up. */
+static void mcp2510_tx_retry_locked(struct mcp2510_priv *priv)
+{
+	if (priv->tx_fifo_len)
+		queue_work(system_highpri_wq, &priv->tx_work);
+}
+
+/*
+ * A buffer whose RTS failed stays out of use until a READ STATUS shows
+ * it free, and nothing reports when one does: the watch calls this.
+ */
+void mcp2510_tx_retry(struct mcp2510_priv *priv)
+{
+	spin_lock_bh(&priv->tx_lock);
+	mcp2510_tx_retry_locked(priv);
+	spin_unlock_bh(&priv->tx_lock);
+}
+
+/*
  * A popped skb of @bytes on the wire now sits in @slot, or in none when
  * @slot is negative: then it was dropped and has ended.
  */
@@ -135,6 +169,7 @@ void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot)
 	spin_lock_bh(&priv->tx_lock);
 	mcp2510_tx_slot_end(priv, slot);
 	mcp2510_tx_wake(priv);
+	mcp2510_tx_retry_locked(priv);
 	spin_unlock_bh(&priv->tx_lock);
 }
 
@@ -172,15 +207,22 @@ void mcp2510_tx_work(struct work_struct *work)
 	/*
 	 * One frame per lock hold: completions may free buffers meanwhile.
 	 * tx_dropped is counted under the lock, as the events count it.
+	 * -EBUSY: every buffer the glue counts free is one whose RTS failed
+	 * and which the chip may still be sending.  The frame waits for the
+	 * next buffer to end (mcp2510_tx_slot_release() or the watch).
 	 */
 	while ((skb = mcp2510_tx_fifo_pop(priv))) {
 		/* Before the load: the echo may be gone once it is in place. */
 		bytes = can_skb_get_frame_len(skb);
 		mcp2510_lock(priv);
 		ret = mcp2510_tx_load(priv, skb, bytes);
-		if (ret)
+		if (ret == -EBUSY)
+			mcp2510_tx_fifo_unpop(priv, skb);
+		else if (ret)
 			priv->ndev->stats.tx_dropped++;
 		mcp2510_unlock(priv);
+		if (ret == -EBUSY)
+			return;
 		if (!ret)
 			continue;
 		if (ret != -ENETDOWN)

@@ -147,6 +147,7 @@ static void mcp2510_watch_work(struct work_struct *work)
 	mcp2510_watch_end_storm(priv);
 	delay = mcp2510_watch_delay(priv);
 	mcp2510_unlock(priv);
+	mcp2510_tx_retry(priv);
 
 	queue_delayed_work(system_wq, &w->work, delay);
 }
@@ -183,11 +184,15 @@ void mcp2510_watch_storm(struct mcp2510_priv *priv)
 	mod_delayed_work(system_wq, &w->work, 0);
 }
 
+void mcp2510_watch_init(struct mcp2510_priv *priv)
+{
+	INIT_DELAYED_WORK(&priv->watch.work, mcp2510_watch_work);
+}
+
 void mcp2510_watch_start(struct mcp2510_priv *priv)
 {
 	struct mcp2510_watch *w = &priv->watch;
 
-	INIT_DELAYED_WORK(&w->work, mcp2510_watch_work);
 	mcp2510_lock(priv);
 	w->running = true;
 	w->polling = false;

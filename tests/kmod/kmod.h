@@ -15,6 +15,7 @@
 #ifndef MCP2510_SIM_KMOD_H
 #define MCP2510_SIM_KMOD_H
 
+#include <linux/clk-provider.h>
 #include <linux/gpio/driver.h>
 #include <linux/hrtimer.h>
 #include <linux/irq_work.h>
@@ -48,7 +49,15 @@ struct mcp2510_sim_chip {
 	struct sim_counters baseline;	/* model counters at the last reset */
 	struct mcp2510_sim_harness_counters harness;
 	u64 stalls_baseline;		/* the bus clock's stalls at the last reset */
-	u32 spi_fail_left;
+	/* faults to come, set through debugfs */
+	struct {
+		u32 spi;		/* "spi_errors": messages to fail */
+		u32 rts;		/* "spi_errors_rts" */
+		u32 osc;		/* "osc_errors": prepares to fail */
+	} fails;
+	struct clk_hw osc;		/* with osc_clk: the oscillator (kmod_osc.c) */
+	struct clk_lookup *osc_lookup;
+	char osc_name[24];
 	bool powered;			/* as last set through debugfs "power" */
 	u8 rts;				/* TXnRTS levels as set through debugfs "rts" */
 	struct software_node swnode;
@@ -99,6 +108,7 @@ struct mcp2510_sim {
 	u32 osc_hz;
 	unsigned int int_trigger;	/* IRQ_TYPE_* the chips' INT lines get */
 	bool gpio_controller;		/* the chips offer their pins as GPIOs */
+	bool osc_clk;			/* the oscillators are clocks (kmod_osc.c) */
 	bool wakeup_source;		/* the chips' INT may wake the system */
 	bool wakeup_filter;		/* and their CNF3.WAKFIL is asked for */
 	struct property_entry props[5];	/* the chips' software node, terminated */
@@ -175,6 +185,33 @@ void mcp2510_sim_suspend_attach(struct mcp2510_sim *sim);
 void mcp2510_sim_suspend_detach(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				     struct dentry *parent);
+/* debugfs files for a u32 of a chip, read and written under the lock */
+int mcp2510_sim_chip_u32_get(struct mcp2510_sim_chip *chip, const u32 *field,
+			     u64 *val);
+int mcp2510_sim_chip_u32_set(struct mcp2510_sim_chip *chip, u32 *field,
+			     u64 val);
+#define MCP2510_SIM_CHIP_U32_ATTR(name, member)				\
+static u32 *name##_field(struct mcp2510_sim_chip *chip)			\
+{									\
+	return &chip->fails.member;					\
+}									\
+									\
+static int name##_get(void *data, u64 *val)				\
+{									\
+	return mcp2510_sim_chip_u32_get(data, name##_field(data), val);	\
+}									\
+									\
+static int name##_set(void *data, u64 val)				\
+{									\
+	return mcp2510_sim_chip_u32_set(data, name##_field(data), val);	\
+}									\
+									\
+DEFINE_DEBUGFS_ATTRIBUTE(name##_fops, name##_get, name##_set, "%llu\n")
+
+int mcp2510_sim_osc_add(struct mcp2510_sim_chip *chip);
+void mcp2510_sim_osc_remove(struct mcp2510_sim_chip *chip);
+void mcp2510_sim_debugfs_osc_create(struct mcp2510_sim_chip *chip,
+				    struct dentry *dir);
 void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
 					struct dentry *dir);
 

@@ -204,30 +204,27 @@ static const struct file_operations regs_fops = {
 	.release = single_release,
 };
 
-static int spi_errors_get(void *data, u64 *val)
+int mcp2510_sim_chip_u32_get(struct mcp2510_sim_chip *chip, const u32 *field,
+			     u64 *val)
 {
-	struct mcp2510_sim_chip *chip = data;
-
 	mcp2510_sim_lock(chip->sim);
-	*val = chip->spi_fail_left;
+	*val = *field;
 	mcp2510_sim_unlock(chip->sim);
 	return 0;
 }
 
-static int spi_errors_set(void *data, u64 val)
+int mcp2510_sim_chip_u32_set(struct mcp2510_sim_chip *chip, u32 *field,
+			     u64 val)
 {
-	struct mcp2510_sim_chip *chip = data;
-
 	if (val > U32_MAX)
 		return -EINVAL;
 	mcp2510_sim_lock(chip->sim);
-	chip->spi_fail_left = val;
+	*field = val;
 	mcp2510_sim_unlock(chip->sim);
 	return 0;
 }
 
-DEFINE_DEBUGFS_ATTRIBUTE(spi_errors_fops, spi_errors_get, spi_errors_set,
-			 "%llu\n");
+MCP2510_SIM_CHIP_U32_ATTR(spi_errors, spi);
 
 static int spi_corrupt_get(void *data, u64 *val)
 {
@@ -401,4 +398,5 @@ void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,
 				   &int_edge_miss_fops);
 	debugfs_create_file_unsafe("rts", 0600, dir, chip, &rts_fops);
 	mcp2510_sim_debugfs_hostile_create(chip, dir);
+	mcp2510_sim_debugfs_osc_create(chip, dir);
 }

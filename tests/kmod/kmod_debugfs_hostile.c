@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * The hostile-chip faults of /sys/kernel/debug/mcp2510-sim/chipN/: an INT
- * line stuck low, garbage on MISO of a chosen kind, and a pulse on the
- * RESET pin.  They exist to prove that a driver survives a broken board
- * or a chip that resets behind its back; docs/simulator.md describes them.
+ * line stuck low, garbage on MISO of a chosen kind, a pulse on the RESET
+ * pin, and an RTS that reaches the chip although its transfer fails.
+ * They exist to prove that a driver survives a broken board or a chip
+ * that resets behind its back; docs/simulator.md describes them.
  */
 #include <linux/debugfs.h>
 #include <linux/fs.h>
@@ -157,6 +158,8 @@ static const struct file_operations pattern_fops = {
 	.release = single_release,
 };
 
+MCP2510_SIM_CHIP_U32_ATTR(spi_errors_rts, rts);
+
 void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
 					struct dentry *dir)
 {
@@ -164,4 +167,6 @@ void mcp2510_sim_debugfs_hostile_create(struct mcp2510_sim_chip *chip,
 	debugfs_create_file_unsafe("reset", 0600, dir, chip, &reset_fops);
 	debugfs_create_file("spi_corrupt_pattern", 0600, dir, chip,
 			    &pattern_fops);
+	debugfs_create_file_unsafe("spi_errors_rts", 0600, dir, chip,
+				   &spi_errors_rts_fops);
 }

@@ -52,6 +52,10 @@ static bool wakeup_source;
 module_param(wakeup_source, bool, 0444);
 MODULE_PARM_DESC(wakeup_source, "give the SPI devices wakeup-source (default no)");
 
+static bool osc_clk;
+module_param(osc_clk, bool, 0444);
+MODULE_PARM_DESC(osc_clk, "give each chip its oscillator as a clock, which can fail (default no)");
+
 static bool wakeup_filter;
 module_param(wakeup_filter, bool, 0444);
 MODULE_PARM_DESC(wakeup_filter, "give the SPI devices microchip,wakeup-filter (default no)");
@@ -168,6 +172,7 @@ static struct mcp2510_sim *sim_create(void)
 	sim->gpio_controller = gpio_controller;
 	sim->wakeup_source = wakeup_source;
 	sim->wakeup_filter = wakeup_filter;
+	sim->osc_clk = osc_clk;
 	ret = mcp2510_sim_of_find(sim);
 	if (ret)
 		goto out_free;

@@ -60,9 +60,9 @@ static bool account_message(struct mcp2510_sim_chip *chip,
 	if (mode == SPI_MODE_1 || mode == SPI_MODE_2)
 		chip->harness.spi_mode_errors++;
 	chip->harness.spi_overspeed += overspeed;
-	fail = chip->spi_fail_left > 0;
+	fail = chip->fails.spi > 0;
 	if (fail) {
-		chip->spi_fail_left--;
+		chip->fails.spi--;
 		chip->harness.spi_failed++;
 	}
 	*timing = chip->sim->spi.timing;
@@ -184,6 +184,32 @@ static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
 	return 0;
 }
 
+/*
+ * The spi_errors_rts fault, after @msg reached the chip: an RTS whose
+ * message fails all the same, and spi_errors for the messages after it.
+ * True when it claims @msg.
+ */
+static bool rts_fails(struct mcp2510_sim_chip *chip, struct spi_message *msg)
+{
+	const struct spi_transfer *xfer;
+	bool fail = false;
+	const u8 *tx;
+
+	xfer = list_first_entry_or_null(&msg->transfers, struct spi_transfer,
+					transfer_list);
+	tx = xfer ? xfer->tx_buf : NULL;
+	mcp2510_sim_lock(chip->sim);
+	if (chip->fails.rts && tx && xfer->len &&
+	    (tx[0] & ~MCP2510_RTS_ALL) == MCP2510_INSTR_RTS) {
+		chip->fails.spi = chip->fails.rts - 1;
+		chip->fails.rts = 0;
+		chip->harness.spi_failed++;
+		fail = true;
+	}
+	mcp2510_sim_unlock(chip->sim);
+	return fail;
+}
+
 static int transfer_one_message(struct spi_controller *ctlr,
 				struct spi_message *msg)
 {
@@ -195,6 +221,8 @@ static int transfer_one_message(struct spi_controller *ctlr,
 	chip = &sim->chips[spi_get_chipselect(msg->spi, 0)];
 	ret = account_message(chip, msg, &timing) ? -EIO :
 	      run_message(chip, msg, &timing);
+	if (!ret && rts_fails(chip, msg))
+		ret = -EIO;
 	msg->status = ret;
 	spi_finalize_current_message(ctlr);
 	return ret;
@@ -308,6 +336,11 @@ static int add_chip_devices(struct mcp2510_sim *sim, const char *driver,
 			dev_err(sim->root, "chip %u: no SPI device: %d\n", n, ret);
 			return ret;
 		}
+		ret = sim->osc_clk ? mcp2510_sim_osc_add(&sim->chips[n]) : 0;
+		if (ret) {
+			dev_err(sim->root, "chip %u: no oscillator: %d\n", n, ret);
+			return ret;
+		}
 	}
 	return 0;
 }
@@ -356,6 +389,10 @@ out_put:
 /* Unbinds the drivers, removes the devices and frees the controller. */
 void mcp2510_sim_spi_unregister(struct mcp2510_sim *sim)
 {
+	unsigned int n;
+
 	spi_unregister_controller(sim->ctlr);
 	sim->ctlr = NULL;
+	for (n = 0; n < sim->nchips; n++)
+		mcp2510_sim_osc_remove(&sim->chips[n]);
 }
