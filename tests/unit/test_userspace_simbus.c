@@ -2,7 +2,8 @@
 /*
  * The simulated bus that processes share ("sim:NAME@BUS"): chips of two
  * processes exchange frames through one broker, the broker goes when its
- * last user closes, and a socket left by a crashed broker is replaced.
+ * last user closes, two first users at once start one broker, and a
+ * socket left by a crashed broker is replaced.
  * Every test has an XDG_RUNTIME_DIR of its own.
  */
 #define _GNU_SOURCE
@@ -188,6 +189,53 @@ static void stale_socket_is_replaced(void **state)
 	assert_true(socket_goes("stale"));
 }
 
+/* Wait for the go, open @dev, then send or receive 0x100#44. */
+static int racer(int go, const char *dev, bool sender)
+{
+	struct can_frame cf = frame(0x100, 0x44);
+	struct mcp2510 *h;
+	char c;
+	bool ok;
+
+	if (read(go, &c, 1) != 1)
+		return 3;
+	h = open_up(dev);
+	if (!h)
+		return 2;
+	if (sender)
+		ok = !mcp2510_send(h, &cf, 0) &&
+		     await(h, MCP2510_EVENT_TX_DONE, &cf);
+	else
+		ok = await(h, MCP2510_EVENT_RX, &cf);
+	mcp2510_close(h);
+	return ok ? 0 : 1;
+}
+
+/* Two first users at once start one broker: their chips share a bus. */
+static void first_users_at_once_share_one_bus(void **state)
+{
+	int go[2], status, i;
+	pid_t pid[2];
+
+	(void)state;
+	assert_int_equal(pipe(go), 0);
+	for (i = 0; i < 2; i++) {
+		pid[i] = fork();
+		assert_true(pid[i] >= 0);
+		if (!pid[i])
+			_exit(racer(go[0], i ? "sim:b@race" : "sim:a@race", i));
+	}
+	assert_int_equal(write(go[1], "gg", 2), 2);
+	for (i = 0; i < 2; i++) {
+		assert_int_equal(waitpid(pid[i], &status, 0), pid[i]);
+		assert_true(WIFEXITED(status));
+		assert_int_equal(WEXITSTATUS(status), 0);
+	}
+	close(go[0]);
+	close(go[1]);
+	assert_true(socket_goes("race"));
+}
+
 static void a_name_is_one_chip(void **state)
 {
 	struct mcp2510 *a = open_up("sim:a@names");
@@ -225,6 +273,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(broker_leaves_after_last_close,
 						make_run_dir, remove_run_dir),
 		cmocka_unit_test_setup_teardown(stale_socket_is_replaced,
+						make_run_dir, remove_run_dir),
+		cmocka_unit_test_setup_teardown(first_users_at_once_share_one_bus,
 						make_run_dir, remove_run_dir),
 		cmocka_unit_test_setup_teardown(a_name_is_one_chip,
 						make_run_dir, remove_run_dir),
