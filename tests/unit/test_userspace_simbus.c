@@ -249,6 +249,26 @@ static void a_name_is_one_chip(void **state)
 	mcp2510_close(a);
 }
 
+static void a_bus_holds_eight_chips(void **state)
+{
+	struct mcp2510_options o;
+	struct mcp2510 *h[8];
+	char dev[32];
+	int i;
+
+	(void)state;
+	mcp2510_options_init(&o);
+	for (i = 0; i < 8; i++) {
+		snprintf(dev, sizeof(dev), "sim:c%d@full", i);
+		h[i] = mcp2510_open(dev, &o);
+		assert_non_null(h[i]);
+	}
+	assert_null(mcp2510_open("sim:c8@full", &o));
+	assert_int_equal(errno, ENOSPC);
+	for (i = 0; i < 8; i++)
+		mcp2510_close(h[i]);
+}
+
 static void bad_names_are_refused(void **state)
 {
 	static const char *const bad[] = {
@@ -277,6 +297,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(first_users_at_once_share_one_bus,
 						make_run_dir, remove_run_dir),
 		cmocka_unit_test_setup_teardown(a_name_is_one_chip,
+						make_run_dir, remove_run_dir),
+		cmocka_unit_test_setup_teardown(a_bus_holds_eight_chips,
 						make_run_dir, remove_run_dir),
 		cmocka_unit_test_setup_teardown(bad_names_are_refused,
 						make_run_dir, remove_run_dir),

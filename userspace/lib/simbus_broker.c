@@ -19,6 +19,8 @@
 #include "simbus.h"
 
 #define NO_CHIP		-1
+/* one more than chips, so that a user too many is told ENOSPC */
+#define MAX_CLIENTS	(SIM_MAX_NODES + 1)
 
 struct chip_slot {
 	struct sim_chip chip;
@@ -41,7 +43,7 @@ struct broker {
 	struct sim_bus bus;
 	struct chip_slot chips[SIM_MAX_NODES];
 	unsigned int nchips;
-	struct client clients[SIM_MAX_NODES];
+	struct client clients[MAX_CLIENTS];
 	unsigned int nclients;
 };
 
@@ -70,7 +72,7 @@ static void tell_int(struct broker *b)
 	struct simbus_msg m = { .op = SIMBUS_INT };
 	unsigned int i;
 
-	for (i = 0; i < SIM_MAX_NODES; i++) {
+	for (i = 0; i < MAX_CLIENTS; i++) {
 		struct client *c = &b->clients[i];
 
 		if (c->fd < 0 || int_low(b, c) == c->int_low)
@@ -174,14 +176,14 @@ static void accept_client(struct broker *b)
 
 	if (fd < 0)
 		return;
-	for (i = 0; i < SIM_MAX_NODES; i++) {
+	for (i = 0; i < MAX_CLIENTS; i++) {
 		if (b->clients[i].fd < 0) {
 			b->clients[i] = (struct client){ fd, NO_CHIP, false };
 			b->nclients++;
 			return;
 		}
 	}
-	close(fd);		/* the bus is full: the client reads EOF */
+	close(fd);		/* one that never said HELLO holds a place */
 }
 
 static bool connection_waiting(const struct broker *b)
@@ -226,7 +228,7 @@ static struct timespec *sleep_for(const struct broker *b, struct timespec *ts)
 _Noreturn void simbus_broker_run(int listen_fd, const char *path)
 {
 	static struct broker b;
-	struct pollfd p[SIM_MAX_NODES + 1];
+	struct pollfd p[MAX_CLIENTS + 1];
 	struct timespec ts;
 	unsigned int i;
 
@@ -234,20 +236,20 @@ _Noreturn void simbus_broker_run(int listen_fd, const char *path)
 	b.path = path;
 	b.t0 = mono_ns();
 	sim_bus_init(&b.bus);
-	for (i = 0; i < SIM_MAX_NODES; i++)
+	for (i = 0; i < MAX_CLIENTS; i++)
 		b.clients[i].fd = -1;
 	for (;;) {
 		if (!b.nclients && !connection_waiting(&b))
 			leave(&b);
 		p[0] = (struct pollfd){ .fd = listen_fd, .events = POLLIN };
-		for (i = 0; i < SIM_MAX_NODES; i++)
+		for (i = 0; i < MAX_CLIENTS; i++)
 			p[i + 1] = (struct pollfd){ .fd = b.clients[i].fd,
 						    .events = POLLIN };
-		if (ppoll(p, SIM_MAX_NODES + 1, sleep_for(&b, &ts), NULL) < 0 &&
+		if (ppoll(p, MAX_CLIENTS + 1, sleep_for(&b, &ts), NULL) < 0 &&
 		    errno != EINTR)
 			_exit(1);
 		catch_up(&b);
-		for (i = 0; i < SIM_MAX_NODES; i++)
+		for (i = 0; i < MAX_CLIENTS; i++)
 			if (p[i + 1].revents && b.clients[i].fd >= 0 &&
 			    !serve(&b, &b.clients[i]))
 				drop(&b, &b.clients[i]);

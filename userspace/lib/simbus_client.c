@@ -5,6 +5,9 @@
  * pin is what the broker last said.  The bus runs at wall-clock pace, so
  * a delay is a real sleep and a wait a real wait.
  *
+ * A broker that has gone makes every call fail with EIO, as a failed
+ * SPI transfer does.
+ *
  * The descriptor for poll() is an epoll set of the socket (an INT packet
  * to read) and an eventfd that is readable while INT is known to be low.
  */
@@ -70,7 +73,7 @@ static int roundtrip(struct remote *r, struct simbus_msg *m)
 		if (m->op == SIMBUS_REPLY)
 			return m->status;
 	}
-	return ret == -EPIPE ? -ENODEV : ret;
+	return ret == -EPIPE ? -EIO : ret;
 }
 
 static int remote_xfer(struct mcp2510_transport *t, const uint8_t *tx,
@@ -113,7 +116,7 @@ static int drain(struct remote *r)
 	while (poll(&p, 1, 0) > 0) {
 		ret = simbus_recv(r->sock, &m);
 		if (ret)
-			return ret == -EPIPE ? -ENODEV : ret;
+			return ret == -EPIPE ? -EIO : ret;
 		if (m.op == SIMBUS_INT)
 			set_int(r, m.int_low);
 	}
