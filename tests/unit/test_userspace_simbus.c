@@ -249,6 +249,45 @@ static void a_name_is_one_chip(void **state)
 	mcp2510_close(a);
 }
 
+/*
+ * A chip keeps its registers between its users, as a board's chip does
+ * between programs, while the bus lives: filters set by one handle are
+ * what the next handle of that chip finds (and receives through).
+ */
+static void a_chip_keeps_its_filters(void **state)
+{
+	struct can_frame miss = frame(0x124, 0x55), hit = frame(0x123, 0x66);
+	struct mcp2510 *holder = open_up("sim:h@keep"), *c;
+	struct mcp2510_hw_filters f, got;
+	struct mcp2510_options o;
+	struct mcp2510_event ev;
+
+	(void)state;
+	assert_non_null(holder);
+	mcp2510_options_init(&o);
+	c = mcp2510_open("sim:c@keep", &o);
+	assert_non_null(c);
+	mcp2510_hw_filters_default(&f);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "mask0", "7ff"), 0);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "filter0", "123"), 0);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "filter1", "123"), 0);
+	assert_int_equal(mcp2510_hw_filters_set(&f, "mask1", "7ff"), 0);
+	assert_int_equal(mcp2510_set_filters(c, &f), 0);
+	mcp2510_close(c);
+
+	c = open_up("sim:c@keep");
+	assert_non_null(c);
+	assert_int_equal(mcp2510_get_filters(c, &got), 0);
+	assert_int_equal(got.filter[0].id, 0x123);
+	assert_int_equal(got.mask[0].id, 0x7ff);
+	assert_int_equal(mcp2510_send(holder, &miss, 0), 0);
+	assert_int_equal(mcp2510_send(holder, &hit, 0), 0);
+	assert_true(await(c, MCP2510_EVENT_RX, &hit));
+	assert_int_equal(mcp2510_recv(c, &ev, 0), -1);
+	mcp2510_close(c);
+	mcp2510_close(holder);
+}
+
 static void a_bus_holds_eight_chips(void **state)
 {
 	struct mcp2510_options o;
@@ -297,6 +336,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(first_users_at_once_share_one_bus,
 						make_run_dir, remove_run_dir),
 		cmocka_unit_test_setup_teardown(a_name_is_one_chip,
+						make_run_dir, remove_run_dir),
+		cmocka_unit_test_setup_teardown(a_chip_keeps_its_filters,
 						make_run_dir, remove_run_dir),
 		cmocka_unit_test_setup_teardown(a_bus_holds_eight_chips,
 						make_run_dir, remove_run_dir),

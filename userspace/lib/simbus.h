@@ -10,9 +10,9 @@
  *   XFER tx[len]              ->   REPLY status, INT level, rx[len]
  *                             <-   INT level, whenever it changes
  *
- * The broker powers a chip down when its client goes, keeps it under
- * its name for the next HELLO, and exits, unlinking the socket, when
- * the last client has gone.
+ * A chip keeps its registers when its client goes, for the next HELLO
+ * of its name; the broker exits, unlinking the socket, when the last
+ * client has gone.
  */
 #ifndef MCP2510_SIMBUS_H
 #define MCP2510_SIMBUS_H

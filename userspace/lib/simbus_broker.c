@@ -98,7 +98,6 @@ static int take_chip(struct broker *b, const struct simbus_msg *m)
 			return -EBUSY;
 		if (s->mcp2515 != !!m->mcp2515 || s->osc_hz != m->osc_hz)
 			return -EEXIST;
-		sim_chip_power(&s->chip, true);
 		return (int)i;
 	}
 	if (b->nchips == SIM_MAX_NODES)
@@ -157,13 +156,16 @@ static bool serve(struct broker *b, struct client *c)
 	return !simbus_send(c->fd, &r);
 }
 
-/* A client gone: its chip stays on the bus, unpowered, as if unplugged. */
+/*
+ * A client gone: its chip stays on the bus as it was left, as a board's
+ * chip stays powered when a program ends (mcp2510_close() put it in
+ * configuration mode, a killed program may leave it on the bus), until
+ * the next user of its name.
+ */
 static void drop(struct broker *b, struct client *c)
 {
-	if (c->chip != NO_CHIP) {
-		sim_chip_power(&b->chips[c->chip].chip, false);
+	if (c->chip != NO_CHIP)
 		b->chips[c->chip].taken = false;
-	}
 	close(c->fd);
 	c->fd = -1;
 	b->nclients--;
