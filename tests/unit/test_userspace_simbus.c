@@ -256,11 +256,16 @@ static void a_name_is_one_chip(void **state)
  */
 static void a_chip_keeps_its_filters(void **state)
 {
+	static const char *const only_123[][2] = {
+		{ "mask0", "7ff" }, { "filter0", "123" },
+		{ "mask1", "7ff" }, { "filter2", "123" },
+	};
 	struct can_frame miss = frame(0x124, 0x55), hit = frame(0x123, 0x66);
 	struct mcp2510 *holder = open_up("sim:h@keep"), *c;
 	struct mcp2510_hw_filters f, got;
 	struct mcp2510_options o;
 	struct mcp2510_event ev;
+	size_t i;
 
 	(void)state;
 	assert_non_null(holder);
@@ -268,10 +273,9 @@ static void a_chip_keeps_its_filters(void **state)
 	c = mcp2510_open("sim:c@keep", &o);
 	assert_non_null(c);
 	mcp2510_hw_filters_default(&f);
-	assert_int_equal(mcp2510_hw_filters_set(&f, "mask0", "7ff"), 0);
-	assert_int_equal(mcp2510_hw_filters_set(&f, "filter0", "123"), 0);
-	assert_int_equal(mcp2510_hw_filters_set(&f, "filter1", "123"), 0);
-	assert_int_equal(mcp2510_hw_filters_set(&f, "mask1", "7ff"), 0);
+	for (i = 0; i < sizeof(only_123) / sizeof(only_123[0]); i++)
+		assert_int_equal(mcp2510_hw_filters_set(&f, only_123[i][0],
+							only_123[i][1]), 0);
 	assert_int_equal(mcp2510_set_filters(c, &f), 0);
 	mcp2510_close(c);
 
