@@ -185,7 +185,8 @@ static void accept_client(struct broker *b)
 			return;
 		}
 	}
-	close(fd);		/* one that never said HELLO holds a place */
+	/* all taken: only while one that sent no HELLO holds a place */
+	close(fd);
 }
 
 static bool connection_waiting(const struct broker *b)
