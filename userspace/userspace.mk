@@ -64,8 +64,11 @@ us_gpio_srcs = $(addprefix $(US_DIR)/lib/,gpio_spec.c gpio_int_v$(1).c)
 US_LIB_SRCS := $(addprefix $(US_DIR)/lib/,open.c config.c run.c events.c \
 		inspect.c spidev.c) $(call us_gpio_srcs,$(US_GPIOD_MAJOR))
 US_SIM_OBJ := $(US_OBJ)/sim-transport.o
+# the in-process simulated buses and the one shared through a broker
+US_SIM_SRCS := $(addprefix $(US_DIR)/lib/,sim_transport.c simbus_wire.c \
+		simbus_connect.c simbus_broker.c simbus_client.c)
 ifeq ($(MCP2510_SIM),1)
-US_SIM_PARTS := $(US_DIR)/lib/sim_transport.c $(SIM_SRCS)
+US_SIM_PARTS := $(US_SIM_SRCS) $(SIM_SRCS)
 else
 US_SIM_PARTS := $(US_DIR)/lib/sim_absent.c
 endif
@@ -218,7 +221,7 @@ VMTEST_DEPS += userspace userspace-gpiod2
 # libgpiod 2's, each built against the headers of its libgpiod (the host's,
 # or the one under build/libgpiod when the host has the other).
 US_UNIT_LIB_SRCS := $(US_LIB_SRCS) $(CORE_SRCS) $(CORE_USER_SRCS) \
-		    $(US_DIR)/lib/sim_transport.c $(SIM_SRCS)
+		    $(US_SIM_SRCS) $(SIM_SRCS)
 US_UNIT_TEXT_SRCS := $(US_TOOL_SRCS) $(US_UNIT_LIB_SRCS)
 us_unit_transport_srcs = $(filter-out %/gpio_spec.c %/gpio_int_v$(US_GPIOD_MAJOR).c,\
 			$(US_LIB_SRCS)) $(call us_gpio_srcs,$(1)) \
@@ -233,7 +236,7 @@ US_UNIT_OBJS := $(patsubst $(TOP)/%.c,%.o,$(wildcard \
 			$(TOP)/tests/unit/test_userspace_*.c \
 			$(TOP)/tests/unit/userspace_*.c)) \
 		$(patsubst %.c,%.o,$(sort $(US_LIB_SRCS) \
-			$(US_DIR)/lib/sim_transport.c $(US_DIR)/lib/sim_absent.c \
+			$(US_SIM_SRCS) $(US_DIR)/lib/sim_absent.c \
 			$(US_TOOL_SRCS) $(US_CTL_SRCS) $(US_DAEMON_SRCS) \
 			$(call us_gpio_srcs,1) $(call us_gpio_srcs,2)))
 $(addprefix $(BUILD)/%/obj/,$(US_UNIT_OBJS)): UNIT_CFLAGS += \
@@ -282,4 +285,5 @@ us_wrap = -Wl$(US_COMMA)$(subst $(US_EMPTY) $(US_EMPTY),$(US_COMMA),$(addprefix 
 $(BUILD)/%/test_userspace_transport: UNIT_LDLIBS += $(call us_wrap,$(US_WRAPPED))
 $(BUILD)/%/test_userspace_gpio_v2: UNIT_LDLIBS += $(call us_wrap,$(US_WRAPPED_V2))
 $(BUILD)/%/test_userspace_text $(BUILD)/%/test_userspace_lib \
+$(BUILD)/%/test_userspace_simbus \
 $(BUILD)/%/test_userspace_ctl $(BUILD)/%/test_userspace_bridge: UNIT_LDLIBS += $(US_LDLIBS)

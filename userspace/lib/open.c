@@ -95,7 +95,7 @@ static const struct mcp2510_ops lib_ops = {
 	.delay_us = ops_delay_us,
 };
 
-/* "spidev:PATH", "sim" or "sim:NAME". */
+/* "spidev:PATH", "sim", "sim:NAME" or "sim:NAME@BUS". */
 static int transport_open(const char *spec,
 			  const struct mcp2510_transport_params *p,
 			  struct mcp2510_transport **out)
@@ -109,7 +109,10 @@ static int transport_open(const char *spec,
 	}
 	if (!strncmp(spec, SIM_NAME ":", strlen(SIM_NAME ":")) &&
 	    spec[strlen(SIM_NAME ":")]) {
-		return mcp2510_sim_open(spec + strlen(SIM_NAME ":"), p, out);
+		spec += strlen(SIM_NAME ":");
+		if (strchr(spec, '@'))
+			return mcp2510_simbus_open(spec, p, out);
+		return mcp2510_sim_open(spec, p, out);
 	}
 	return -EINVAL;
 }

@@ -3,7 +3,7 @@
  * What the library needs from the thing that reaches the chip: one
  * chip-select-low transfer (or a few in one message), a delay, and a way
  * to wait for the INT pin.
- * spidev.c and sim_transport.c provide it.
+ * spidev.c, sim_transport.c and simbus_client.c provide it.
  */
 #ifndef MCP2510_TRANSPORT_H
 #define MCP2510_TRANSPORT_H
@@ -81,5 +81,9 @@ int mcp2510_spidev_open(const char *path,
 int mcp2510_sim_open(const char *bus_name,
 		     const struct mcp2510_transport_params *p,
 		     struct mcp2510_transport **out);
+/* "NAME@BUS": the chip NAME on the bus BUS shared by processes. */
+int mcp2510_simbus_open(const char *spec,
+			const struct mcp2510_transport_params *p,
+			struct mcp2510_transport **out);
 
 #endif /* MCP2510_TRANSPORT_H */

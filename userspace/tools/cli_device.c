@@ -33,8 +33,10 @@ const struct cli_option cli_device_options[] = {
 
 const char cli_device_help[] =
 "  -d, --device DEV    spidev:/dev/spidevB.C (or just the path), sim (a\n"
-"                      simulated chip with an always-acknowledging peer) or\n"
+"                      simulated chip with an always-acknowledging peer),\n"
 "                      sim:NAME (a simulated bus shared inside this process)\n"
+"                      or sim:CHIP@BUS (the chip CHIP on a simulated bus\n"
+"                      that processes share)\n"
 "  -i, --int CHIP:LINE INT pin as a GPIO line, e.g. gpiochip0:25, or a line\n"
 "                      name alone (GPIO25); without it the chip is polled\n"
 "                      every 2 ms\n"
@@ -274,12 +276,41 @@ static const char *spidev_path(const char *device)
 	return strncmp(device, "spidev:", 7) ? NULL : device + 7;
 }
 
+/* The shared bus's own refusals (sim:CHIP@BUS); false for the others. */
+static bool simbus_failed(const char *device, struct cli_args *a, int err)
+{
+	const char *miso = getenv("MCP2510_SIM_MISO");
+	const char *why;
+
+	if (strncmp(device, "sim:", 4) || !strchr(device, '@'))
+		return false;
+	if (err == EINVAL && miso && *miso && strcmp(miso, "low") &&
+	    strcmp(miso, "high"))
+		return false;
+	if (err == EINVAL || err == ENAMETOOLONG)
+		why = "CHIP and BUS are 1 to 31 letters, digits, '.', '_' or '-', not starting with '.'";
+	else if (err == EBUSY)
+		why = "another handle has that chip";
+	else if (err == EEXIST)
+		why = "a chip of that name with another --variant or --clock is on the bus";
+	else if (err == ENOSPC)
+		why = "the bus has its 8 chips";
+	else if (err == EACCES)
+		why = "the socket directory is not the user's alone (mode 0700)";
+	else
+		return false;
+	cli_error(a->err, a->prog, "cannot open %s: %s", device, why);
+	return true;
+}
+
 /* What errno says about opening @d->device, as one line. */
 static void open_failed(const struct cli_device *d, struct cli_args *a,
 			int err)
 {
 	const char *path = spidev_path(d->device);
 
+	if (simbus_failed(d->device, a, err))
+		return;
 	if (err == ENODEV)
 		cli_error(a->err, a->prog,
 			  "no chip answers on %s: wrong reset values or a register that does not keep what is written (MISO stuck low or high? no power? no oscillator?)",
@@ -290,7 +321,7 @@ static void open_failed(const struct cli_device *d, struct cli_args *a,
 		sim_env_failed(a, d->device);
 	else if (err == EINVAL)
 		cli_error(a->err, a->prog,
-			  "cannot open %s: not spidev:/dev/spidevB.C, sim or sim:NAME",
+			  "cannot open %s: not spidev:/dev/spidevB.C, sim, sim:NAME or sim:CHIP@BUS",
 			  d->device);
 	else
 		cli_error(a->err, a->prog, "cannot open %s: %s", d->device,

@@ -29,7 +29,11 @@ struct node {
 	unsigned int mismatches;
 };
 
-/* "sim" alone gets a bus named after the command, "sim:NAME" keeps NAME. */
+/*
+ * "sim" alone gets a bus named after the command, "sim:NAME" keeps NAME.
+ * A bus that processes share (sim:CHIP@BUS) is refused: these commands
+ * open two chips of one bus from this process and count in its time.
+ */
 static int sim_bus_spec(struct ctl *c, const char *cmd, char *buf, size_t len)
 {
 	const char *dev = c->dev.device;
@@ -38,6 +42,12 @@ static int sim_bus_spec(struct ctl *c, const char *cmd, char *buf, size_t len)
 		cli_error(c->args.err, c->args.prog,
 			  "%s needs --device sim (two simulated chips on one bus)",
 			  cmd);
+		return -1;
+	}
+	if (strchr(dev, '@')) {
+		cli_error(c->args.err, c->args.prog,
+			  "%s puts two chips on a bus of this process: --device sim or sim:NAME, not %s",
+			  cmd, dev);
 		return -1;
 	}
 	snprintf(buf, len, "%s", dev[3] ? dev : "sim:");
