@@ -43,13 +43,12 @@
 #include <time.h>
 /*
  * struct timespec comes with C11's or POSIX's <time.h>; a strict C99
- * program (-std=c99, no _POSIX_C_SOURCE) gets it from glibc's own header.
+ * program (-std=c99, no _POSIX_C_SOURCE) gets it from glibc's own header
+ * (glibc 2.26 and later; <time.h> has defined __GLIBC__ by here).
  */
 #if (!defined(__STDC_VERSION__) || __STDC_VERSION__ < 201112L) && \
-	defined(__has_include)
-#if __has_include(<bits/types/struct_timespec.h>)
+	defined(__GLIBC__)
 #include <bits/types/struct_timespec.h>
-#endif
 #endif
 #include <linux/can.h>
 #include <linux/can/netlink.h>
