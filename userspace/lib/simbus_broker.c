@@ -18,7 +18,7 @@
 #include "mcp2510_sim.h"
 #include "simbus.h"
 
-#define NO_CHIP		-1
+#define NO_CHIP		(-1)
 /* one more than chips, so that a user too many is told ENOSPC */
 #define MAX_CLIENTS	(SIM_MAX_NODES + 1)
 
