@@ -203,25 +203,26 @@ sim_free = nm -g --defined-only $(1)/tests/sim/*.o | awk 'NF == 3 { print $$3 }'
 	if [ -s $(1)/sim.leaks ]; then cat $(1)/sim.leaks; \
 		echo "modules-check: simulator code in mcp2510.ko" >&2; exit 1; fi
 
-# $(call strict_build,KERNEL): a full build with W=1 and sparse on every
-# file against the rig kernel KERNEL's headers, in a fresh tree of its own
+# $(call strict_build,KDIR,TAG): a full build with W=1 and sparse on every
+# file against the kernel build tree KDIR, in a fresh tree of its own
 # (several people may run this at once); any compiler, sparse or modpost
-# warning fails it.
+# warning fails it.  TAG names the kernel in messages.
 define strict_build
-	@kdir=$(call vm_kdir,$(1)) || exit 1; \
-	echo "== $(1): W=1 C=1, KDIR=$$kdir"; \
+	@kdir=$(1); [ -f "$$kdir/Makefile" ] || { \
+		echo "modules-check: no $(2) kernel build tree at '$$kdir'" >&2; exit 1; }; \
+	echo "== $(2): W=1 C=1, KDIR=$$kdir"; \
 	mkdir -p $(KBUILD_TREES); \
-	tree=$$(mktemp -d $(KBUILD_TREES)/check-$(1).XXXXXX); \
+	tree=$$(mktemp -d $(KBUILD_TREES)/check-$(2).XXXXXX); \
 	log=$$tree.log; \
 	$(call kbuild_tree,$$tree,$(KBUILD_SOURCES)) && \
 	if ! $(MAKE) -C $$kdir M=$$tree W=1 C=1 modules >$$log 2>&1; then \
-		cat $$log; echo "modules-check: $(1) build failed" >&2; exit 1; fi; \
+		cat $$log; echo "modules-check: $(2) build failed" >&2; exit 1; fi; \
 	if grep -q 'warning:\|error:\|WARNING:\|ERROR:' $$log; then \
 		grep 'warning:\|error:\|WARNING:\|ERROR:' $$log; \
-		echo "modules-check: $(1) build not clean (log: $$log)" >&2; exit 1; fi; \
+		echo "modules-check: $(2) build not clean (log: $$log)" >&2; exit 1; fi; \
 	$(call sim_free,$$tree); \
 	rm -rf $$tree $$log
-	@echo "$(1): no warnings, no simulator code in mcp2510.ko"
+	@echo "$(2): no warnings, no simulator code in mcp2510.ko"
 endef
 
 modules-check: modules-deps $(addprefix vm-kernel-,$(MODULES_CHECK_KERNELS))
@@ -231,8 +232,8 @@ modules-check: modules-deps $(addprefix vm-kernel-,$(MODULES_CHECK_KERNELS))
 
 .PHONY: modules-check-build
 modules-check-build:
-	$(call strict_build,6.1)
-	$(call strict_build,6.12)
+	$(call strict_build,$(call vm_kdir,6.1),6.1)
+	$(call strict_build,$(call vm_kdir,6.12),6.12)
 
 CHECK_STEPS += modules-check
 # The rig boots what modules-rig leaves in build/modules/<kernel>/.

@@ -58,8 +58,8 @@ trixie-inside:
 	@echo "trixie-check: passed on Debian $$(cat /etc/debian_version): userspace (libgpiod $(US_GPIOD_VERSION) backend), $(words $(UNIT_SUITES)) unit suites plain and under ASan/UBSan, modules against $(TRIXIE_HEADERS) and $(TRIXIE_HEADERS_NEWEST) with W=1 and sparse, no warnings"
 
 trixie-modules:
-	$(call strict_build,$(TRIXIE_HEADERS),6.12)
-	$(call strict_build,$(TRIXIE_HEADERS_NEWEST),$(KERNEL_NEWEST))
+	$(call strict_build,/usr/src/$(TRIXIE_HEADERS),6.12)
+	$(call strict_build,/usr/src/$(TRIXIE_HEADERS_NEWEST),$(KERNEL_NEWEST))
 
 # The root is made in the background while the first steps run (its
 # download waits on the network, its install on the disk); trixie-check
