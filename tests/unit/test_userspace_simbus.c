@@ -77,6 +77,12 @@ static struct can_frame frame(canid_t id, uint8_t byte)
 	return cf;
 }
 
+static bool same_frame(const struct can_frame *a, const struct can_frame *b)
+{
+	return a->can_id == b->can_id && a->len == b->len &&
+	       a->data[0] == b->data[0];
+}
+
 /* Wait for an event of @type; its frame must be @want. */
 static bool await(struct mcp2510 *h, enum mcp2510_event_type type,
 		  const struct can_frame *want)
@@ -87,8 +93,30 @@ static bool await(struct mcp2510 *h, enum mcp2510_event_type type,
 		if (mcp2510_recv(h, &ev, WAIT_MS))
 			return false;
 	while (ev.type != type);
-	return ev.frame.can_id == want->can_id && ev.frame.len == want->len &&
-	       ev.frame.data[0] == want->data[0];
+	return same_frame(&ev.frame, want);
+}
+
+/*
+ * Wait for @sent's TX_DONE and @reply's RX in either order: one interrupt
+ * pass may find the reply already in a receive buffer when it reports the
+ * end of the transmission.
+ */
+static bool await_sent_and_reply(struct mcp2510 *h,
+				 const struct can_frame *sent,
+				 const struct can_frame *reply)
+{
+	bool done = false, received = false;
+	struct mcp2510_event ev;
+
+	while (!done || !received) {
+		if (mcp2510_recv(h, &ev, WAIT_MS))
+			return false;
+		if (ev.type == MCP2510_EVENT_TX_DONE)
+			done = same_frame(&ev.frame, sent);
+		else if (ev.type == MCP2510_EVENT_RX)
+			received = same_frame(&ev.frame, reply);
+	}
+	return true;
 }
 
 /* The other process: send 0x123, then expect 0x321 back. */
@@ -100,9 +128,7 @@ static int peer(const char *dev)
 
 	if (!h)
 		return 2;
-	ok = !mcp2510_send(h, &out, 0) &&
-	     await(h, MCP2510_EVENT_TX_DONE, &out) &&
-	     await(h, MCP2510_EVENT_RX, &in);
+	ok = !mcp2510_send(h, &out, 0) && await_sent_and_reply(h, &out, &in);
 	mcp2510_close(h);
 	return ok ? 0 : 1;
 }
