@@ -60,6 +60,7 @@ help:
 	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
 	@echo "make deb       Debian packages in build/deb; make deb-check (root)"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
+	@echo "make fresh-root-check  make demo in minimal Debian 12 and 13 roots"
 	@echo "make kernels-news  is there a kernel series newer than the ones tested?"
 	@echo "make clean     remove build products, keep downloads, kernels and roots"
 	@echo "make distclean remove all of build/"
@@ -118,6 +119,8 @@ include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
 # Late: the Debian 13 root it needs is made in the background meanwhile.
 include tests/trixie/trixie.mk
+# Late too: its roots, clones and demos run in the background meanwhile.
+include tests/fresh-root/fresh-root.mk
 include tests/bench/bench.mk
 include tests/matrix/matrix.mk
 

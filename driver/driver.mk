@@ -40,7 +40,9 @@ kernel_release = $(shell sed -n 's/.*UTS_RELEASE "\(.*\)"/\1/p' \
 KBUILD_SOURCES := Kbuild uapi driver tests/kmod tests/sim
 KBUILD_TREES := $(BUILD)/kbuild
 MODULES_OUT := $(BUILD)/modules
-KERNEL_PACKAGES := build-essential bc kmod
+# libelf-dev brings the libelf the kbuild tools of Debian's headers link
+# against (objtool): libelf1 on Debian 12, libelf1t64 on Debian 13.
+KERNEL_PACKAGES := build-essential bc kmod libelf-dev
 
 # $(call kbuild_tree,DIR,SOURCES): one shell command that refreshes DIR as
 # a mirror of SOURCES made of symlinks (build products and hidden files left
@@ -93,13 +95,23 @@ modules:
 	@$(call need_kdir,modules)
 	$(call kbuild_modules,$(KDIR),$(call kernel_release,$(KDIR)))
 
-# The rig's kernels (tests/vm/vm.mk's VM_KERNELS when set).
+# $(call kernel_cc,KDIR): the gcc-<N> a Debian kernel build tree names in
+# its .kernelvariables (gcc-12 for bookworm's 6.1), empty when it names none.
+kernel_cc = sed -n 's/^CC = .*\(gcc-[0-9][0-9]*\)$$/\1/p' $(1)/.kernelvariables 2>/dev/null
+
+# The rig's kernels (tests/vm/vm.mk's VM_KERNELS when set).  A rig kernel
+# may come from another Debian release than the host's (6.1 from Debian 12
+# on a Debian 13 host): its headers ask for that release's compiler, which
+# is installed when missing (Debian 13 has gcc-12 too), so the modules are
+# built with the compiler the kernel was built with.
 RIG_KERNELS = $(or $(VM_KERNELS),6.1 6.12 rt debug)
 modules-rig: modules-deps
 	@set -e; for k in $(RIG_KERNELS); do \
 		kdir=$$($(TOP)/tests/vm/kernel-info $$k kdir 2>/dev/null) || { \
 			echo "modules-rig: rig kernel $$k not there yet, not built"; \
 			continue; }; \
+		cc=$$($(call kernel_cc,$$kdir)); \
+		[ -z "$$cc" ] || command -v $$cc >/dev/null || $(ENSURE) $$cc; \
 		$(MAKE) --no-print-directory modules-rig-one KDIR=$$kdir RIG_KERNEL=$$k; \
 	done
 

@@ -6,7 +6,7 @@
 #                       headers and those of the newest series the project
 #                       builds for (KERNEL_NEWEST, tests/matrix/kernels) from
 #                       trixie-backports, from the Debian archive the host's
-#                       apt uses (tests/trixie/make-root); made once, made
+#                       apt uses (tests/lib/make-root); made once, made
 #                       anew when its package list or that series changes
 #   make trixie-check   in that root, on this tree: make userspace, unit and
 #                       unit-asan (libgpiod 2 is the root's own, so the
@@ -17,10 +17,14 @@
 #                       kbuild tools need Debian 13's glibc: built here)
 #
 # The tree is mounted read-only at /src in the root and built into the
-# root's /build (tests/trixie/in-root), so the host's build/ is left alone.
+# root's /build (tests/lib/in-root), so the host's build/ is left alone.
 
-TRIXIE_DIR := $(TOP)/tests/trixie
 TRIXIE_ROOT := $(BUILD)/trixie/root
+# What make userspace, unit, unit-asan and the modules' W=1 C=1 build need;
+# make-root adds the newest series' headers from trixie-backports.
+TRIXIE_PACKAGES = build-essential make pkg-config libcmocka-dev libgpiod-dev \
+	linux-headers-$(shell dpkg --print-architecture) sparse debian-archive-keyring
+TRIXIE_MAKE_ROOT = $(TOP)/tests/lib/make-root --newest-headers
 CLEAN_KEEP += trixie
 # What runs inside: the same Makefile, building into the root's /build,
 # with warnings errors when they are here (make check).
@@ -29,10 +33,10 @@ TRIXIE_MAKE := make --no-print-directory -C /src BUILD=/build WERROR=$(WERROR)
 .PHONY: trixie-root trixie-root-background trixie-check trixie-inside \
 	trixie-modules
 trixie-root:
-	@$(TRIXIE_DIR)/make-root $(TRIXIE_ROOT)
+	@$(TRIXIE_MAKE_ROOT) $(TRIXIE_ROOT) trixie $(TRIXIE_PACKAGES)
 
 trixie-check: trixie-root
-	@$(TRIXIE_DIR)/in-root $(TRIXIE_ROOT) $(TRIXIE_MAKE) trixie-inside || { \
+	@$(TOP)/tests/lib/in-root --ro $(TOP):/src $(TRIXIE_ROOT) $(TRIXIE_MAKE) trixie-inside || { \
 		echo "trixie-check: FAILED in the Debian 13 root (output above)" >&2; \
 		exit 1; }
 
@@ -65,7 +69,7 @@ trixie-modules:
 # download waits on the network, its install on the disk); trixie-check
 # waits for it.
 trixie-root-background:
-	@$(TRIXIE_DIR)/make-root $(TRIXIE_ROOT) --background
+	@$(TRIXIE_MAKE_ROOT) --background $(TRIXIE_ROOT) trixie $(TRIXIE_PACKAGES)
 
 CHECK_STEPS := trixie-root-background $(CHECK_STEPS)
 CHECK_STEPS += trixie-check
