@@ -97,7 +97,7 @@ modules:
 
 # $(call kernel_cc,KDIR): the gcc-<N> a Debian kernel build tree names in
 # its .kernelvariables (gcc-12 for bookworm's 6.1), empty when it names none.
-kernel_cc = sed -n 's/^CC = .*\(gcc-[0-9][0-9]*\)$$/\1/p' $(1)/.kernelvariables 2>/dev/null
+kernel_cc = sed -n 's/^CC = .*\(gcc-[0-9][0-9]*\)$$/\1/p' $(1)/.kernelvariables 2>/dev/null || true
 
 # The rig's kernels (tests/vm/vm.mk's VM_KERNELS when set).  A rig kernel
 # may come from another Debian release than the host's (6.1 from Debian 12
