@@ -55,7 +55,40 @@ void sim_frame_measure(const struct can_frame *cf, struct sim_frame_info *info);
 u32 sim_frame_arbitration_key(const struct can_frame *cf);
 bool sim_timings_match(const struct sim_timing *a, const struct sim_timing *b);
 
-/* chip side, called by the bus (sim_chip.c) */
+/* between the chip's own files (sim_chip_*.c) */
+#define SIM_ADDR_MASK		0x7f	/* the address pointer has 7 bits */
+#define SIM_EFLG_OVR		(MCP2510_EFLG_RX1OVR | MCP2510_EFLG_RX0OVR)
+/* registers (sim_chip_regs.c) */
+void sim_chip_reset(struct sim_chip *chip, bool power_on);
+u8 *sim_reg(struct sim_chip *chip, unsigned int addr);
+bool sim_reg_bit_modifiable(unsigned int addr);
+u8 sim_reg_read(const struct sim_chip *chip, unsigned int addr);
+void sim_reg_write(struct sim_chip *chip, unsigned int addr, u8 val, u8 mask);
+/* modes and pins (sim_chip_mode.c) */
+void sim_chip_enter_mode(struct sim_chip *chip, unsigned int mode);
+bool sim_chip_mode_held(const struct sim_chip *chip);
+void sim_chip_mode_request(struct sim_chip *chip);
+void sim_chip_mode_try(struct sim_chip *chip);
+void sim_chip_update_pins(struct sim_chip *chip);
+void sim_chip_wake(struct sim_chip *chip);
+/* transmit (sim_chip_tx.c) */
+void sim_chip_abort_all(struct sim_chip *chip);
+void sim_chip_loopback_end(struct sim_chip *chip);
+void sim_chip_loopback_start(struct sim_chip *chip, unsigned int buf);
+int sim_chip_pick_buffer(const struct sim_chip *chip);
+void sim_chip_request(struct sim_chip *chip, unsigned int n);
+u8 *sim_txbctrl(struct sim_chip *chip, unsigned int n);
+/* receive (sim_chip_rx.c) */
+void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf);
+bool sim_rxb_full(const struct sim_chip *chip, unsigned int n);
+/* fault confinement (sim_chip_errors.c) */
+void sim_chip_clear_counters(struct sim_chip *chip);
+void sim_chip_recover(struct sim_chip *chip);
+u64 sim_chip_recovery_at(const struct sim_chip *chip);
+void sim_chip_tec_add(struct sim_chip *chip, unsigned int n);
+void sim_chip_update_eflg(struct sim_chip *chip);
+
+/* chip side, called by the bus (sim_chip_*.c) */
 u32 sim_chip_bit_ns(const struct sim_chip *chip);
 void sim_chip_timing(const struct sim_chip *chip, struct sim_timing *t);
 bool sim_chip_listening(const struct sim_chip *chip);
