@@ -86,13 +86,22 @@ struct mcp2510_sim {
 	struct hrtimer timer;
 	/* what SPI messages and interrupt delivery cost (kmod_spi.c) */
 	struct sim_spi_bus spi;
+	/* the board profile spi last took, at spi_cost_scale_pct, and spi_seed */
+	unsigned int spi_profile;
+	u32 spi_scale_pct;
+	u32 spi_seed;
 	bool stopping;
 
 	raw_spinlock_t irq_lock;
 	struct mcp2510_sim_line lines[MCP2510_SIM_LINES];
 	struct irq_work irq_work;
-	/* the interrupt latency in real time, 0 when SPI time is off */
-	u64 irq_delay_ns;
+	/*
+	 * The interrupt latency's distribution (SPI time off: none), its
+	 * draws' generator and time_scale, for deliveries under irq_lock.
+	 */
+	struct sim_spi_timing irq_timing;
+	u32 irq_rng;
+	u32 irq_time_scale;
 	struct hrtimer irq_timer;	/* delayed deliveries; under irq_lock */
 	struct gpio_chip gpio;
 	char line_names[MCP2510_SIM_LINES][MCP2510_SIM_LINE_NAME_LEN];
@@ -181,6 +190,9 @@ int mcp2510_sim_frame_format(char *buf, size_t size, const struct can_frame *cf)
 /* kmod_debugfs_bus.c, kmod_debugfs_chip.c, kmod_debugfs_hostile.c */
 void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_remove(struct mcp2510_sim *sim);
+/* kmod_debugfs_spi.c: SPI time, board profiles and their scale */
+void mcp2510_sim_debugfs_spi_create(struct mcp2510_sim *sim,
+				    struct dentry *dir);
 void mcp2510_sim_suspend_attach(struct mcp2510_sim *sim);
 void mcp2510_sim_suspend_detach(struct mcp2510_sim *sim);
 void mcp2510_sim_debugfs_chip_create(struct mcp2510_sim_chip *chip,

@@ -392,91 +392,6 @@ static int time_scale_set(void *data, u64 val)
 DEFINE_DEBUGFS_ATTRIBUTE(time_scale_fops, time_scale_get, time_scale_set,
 			 "%llu\n");
 
-/*
- * SPI time (kmod_spi.c): one file per parameter of struct sim_spi_timing.
- * A change applies to the messages that start after it.
- */
-static int spi_time_get(struct mcp2510_sim *sim, u32 *field, u64 *val)
-{
-	mcp2510_sim_lock(sim);
-	*val = *field;
-	mcp2510_sim_unlock(sim);
-	return 0;
-}
-
-static int spi_time_set(struct mcp2510_sim *sim, u32 *field, u64 val,
-			u64 max)
-{
-	if (val > max)
-		return -EINVAL;
-	mcp2510_sim_lock(sim);
-	*field = val;
-	mcp2510_sim_irq_set_delay(sim);
-	mcp2510_sim_unlock(sim);
-	return 0;
-}
-
-#define SPI_TIME_ATTR(name, field)					\
-static u32 *name##_field(struct mcp2510_sim *sim)			\
-{									\
-	return &sim->spi.timing.field;					\
-}									\
-									\
-static int name##_get(void *data, u64 *val)				\
-{									\
-	return spi_time_get(data, name##_field(data), val);		\
-}									\
-									\
-static int name##_set(void *data, u64 val)				\
-{									\
-	return spi_time_set(data, name##_field(data), val, U32_MAX);	\
-}									\
-									\
-DEFINE_DEBUGFS_ATTRIBUTE(name##_fops, name##_get, name##_set, "%llu\n")
-
-static int spi_time_on_get(void *data, u64 *val)
-{
-	struct mcp2510_sim *sim = data;
-
-	mcp2510_sim_lock(sim);
-	*val = sim->spi.timing.enabled;
-	mcp2510_sim_unlock(sim);
-	return 0;
-}
-
-static int spi_time_on_set(void *data, u64 val)
-{
-	struct mcp2510_sim *sim = data;
-
-	if (val > 1)
-		return -EINVAL;
-	mcp2510_sim_lock(sim);
-	sim->spi.timing.enabled = val;
-	mcp2510_sim_irq_set_delay(sim);
-	mcp2510_sim_unlock(sim);
-	return 0;
-}
-
-DEFINE_DEBUGFS_ATTRIBUTE(spi_time_fops, spi_time_on_get, spi_time_on_set,
-			 "%llu\n");
-SPI_TIME_ATTR(spi_msg_ns, msg_ns);
-SPI_TIME_ATTR(spi_cs_setup_ns, cs_setup_ns);
-SPI_TIME_ATTR(spi_cs_hold_ns, cs_hold_ns);
-SPI_TIME_ATTR(spi_ctlr_max_hz, ctlr_max_hz);
-SPI_TIME_ATTR(irq_latency_ns, irq_latency_ns);
-
-static const struct {
-	const char *name;
-	const struct file_operations *fops;
-} spi_time_files[] = {
-	{ "spi_time", &spi_time_fops },
-	{ "spi_msg_ns", &spi_msg_ns_fops },
-	{ "spi_cs_setup_ns", &spi_cs_setup_ns_fops },
-	{ "spi_cs_hold_ns", &spi_cs_hold_ns_fops },
-	{ "spi_ctlr_max_hz", &spi_ctlr_max_hz_fops },
-	{ "irq_latency_ns", &irq_latency_ns_fops },
-};
-
 static int clock_stalls_get(void *data, u64 *val)
 {
 	struct mcp2510_sim *sim = data;
@@ -511,9 +426,7 @@ void mcp2510_sim_debugfs_create(struct mcp2510_sim *sim)
 				   &time_scale_fops);
 	debugfs_create_file_unsafe("clock_stalls", 0400, dir, sim,
 				   &clock_stalls_fops);
-	for (n = 0; n < ARRAY_SIZE(spi_time_files); n++)
-		debugfs_create_file_unsafe(spi_time_files[n].name, 0600, dir,
-					   sim, spi_time_files[n].fops);
+	mcp2510_sim_debugfs_spi_create(sim, dir);
 	for (n = 0; n < sim->nchips; n++)
 		mcp2510_sim_debugfs_chip_create(&sim->chips[n], dir);
 }

@@ -91,13 +91,17 @@ static void arm_irq_timer(struct mcp2510_sim *sim, u64 due)
 static bool schedule_delivery(struct mcp2510_sim *sim,
 			      struct mcp2510_sim_line *line)
 {
-	u64 delay = sim->irq_delay_ns;
+	const struct sim_spi_timing *t = &sim->irq_timing;
+	u64 delay;
 
-	if (!mcp2510_sim_line_kick(line, delay ? ktime_get_ns() : 0, delay))
+	if (!t->enabled)
+		return mcp2510_sim_line_kick(line, 0, 0);
+	/* one draw per delivery: a kick while one is due leaves it be */
+	if (line->due_set && !line->masked && mcp2510_sim_line_asserted(line))
 		return false;
-	if (!delay)
-		return true;
-	arm_irq_timer(sim, line->due_ns);
+	delay = sim_spi_irq_latency_ns(t, &sim->irq_rng) * sim->irq_time_scale;
+	if (mcp2510_sim_line_kick(line, ktime_get_ns(), delay))
+		arm_irq_timer(sim, line->due_ns);
 	return false;
 }
 
@@ -150,17 +154,18 @@ static enum hrtimer_restart irq_timer_fired(struct hrtimer *timer)
 }
 
 /*
- * Under sim->lock, when SPI time or time_scale change: the interrupt
- * latency in real time.
+ * Under sim->lock, when SPI time, its seed or time_scale change: the
+ * interrupt latency's distribution, drawn in real time (time_scale) for
+ * each delivery.
  */
 void mcp2510_sim_irq_set_delay(struct mcp2510_sim *sim)
 {
-	const struct sim_spi_timing *t = &sim->spi.timing;
 	unsigned long flags;
 
 	raw_spin_lock_irqsave(&sim->irq_lock, flags);
-	sim->irq_delay_ns = t->enabled ?
-		(u64)t->irq_latency_ns * sim->clock.time_scale : 0;
+	sim->irq_timing = sim->spi.timing;
+	sim->irq_rng = sim->spi_seed;
+	sim->irq_time_scale = sim->clock.time_scale;
 	raw_spin_unlock_irqrestore(&sim->irq_lock, flags);
 }
 

@@ -19,7 +19,7 @@ void mcp2510_sim_period_init(struct mcp2510_sim_period *p, u8 *tx, u8 *rx,
 
 int mcp2510_sim_period_add(struct mcp2510_sim_period *p,
 			   const struct mcp2510_sim_xfer *x,
-			   const struct sim_spi_timing *t, u32 chip_max_hz)
+			   struct sim_spi_bus *sb, u32 chip_max_hz)
 {
 	if (x->len > p->cap - p->len)
 		return -EMSGSIZE;
@@ -28,8 +28,8 @@ int mcp2510_sim_period_add(struct mcp2510_sim_period *p,
 	else
 		memset(p->tx + p->len, 0, x->len);
 	p->len += x->len;
-	/* each transfer may ask for its own clock */
-	p->clock_ns += sim_spi_clock_ns(t, x->len, x->speed_hz, chip_max_hz);
+	/* each transfer pays its own set-up and may ask for its own clock */
+	p->clock_ns += sim_spi_xfer_ns(sb, x->len, x->speed_hz, chip_max_hz);
 	return x->last || x->cs_change;
 }
 

@@ -50,7 +50,7 @@ struct mcp2510_sim_period {
 	size_t cap;
 	size_t len;		/* bytes gathered for the period under way */
 	size_t given;		/* bytes of it handed back to transfers */
-	u64 clock_ns;		/* its SCK time under the SPI timing in force */
+	u64 clock_ns;		/* its transfers' time under the SPI timing in force */
 };
 
 void mcp2510_sim_period_init(struct mcp2510_sim_period *p, u8 *tx, u8 *rx,
@@ -61,7 +61,7 @@ void mcp2510_sim_period_init(struct mcp2510_sim_period *p, u8 *tx, u8 *rx,
  */
 int mcp2510_sim_period_add(struct mcp2510_sim_period *p,
 			   const struct mcp2510_sim_xfer *x,
-			   const struct sim_spi_timing *t, u32 chip_max_hz);
+			   struct sim_spi_bus *sb, u32 chip_max_hz);
 /* After the period ran: the next transfer's share of MISO (rx may be NULL). */
 void mcp2510_sim_period_give(struct mcp2510_sim_period *p, void *rx, u32 len);
 /* Start gathering the next period. */

@@ -9,12 +9,15 @@
  * asks for cs_change.  CS always rises at the end of a message
  * (kmod_logic.c decides, this file applies it to struct spi_message).
  *
- * With SPI time on (debugfs spi_time and friends, docs/simulator.md) a
- * message costs what the model's SPI time arithmetic says: it waits for
- * the bus, pays its host overhead, and each period ends, and the chip
- * acts, when CS rises at the modelled time; the controller sleeps in real
- * time, scaled by time_scale, until then.  Off, all periods of a message
- * happen at one bus instant (see run_message()).
+ * With SPI time on (debugfs spi_profile, spi_time and friends,
+ * docs/simulator.md) a message costs what the model's SPI time arithmetic
+ * says: it waits for the bus, pays its host overhead, and each period
+ * ends, and the chip acts, when CS rises at the modelled time; the
+ * controller sleeps in real time, scaled by time_scale, until then.  Bus
+ * time runs on between the periods of one message by the modelled gap
+ * (CS high, CS set-up, the next transfers), so frames arrive between
+ * chip-select periods when they would on a board.  Off, all periods of a
+ * message happen at one bus instant (see run_message()).
  */
 #include <linux/device.h>
 #include <linux/irq.h>
@@ -41,11 +44,9 @@ static size_t period_limit(struct spi_device *spi)
  * fault claims it.  The chip samples on the rising edge with the clock
  * idling low or high (modes 0 and 3); other modes or a faster clock would
  * garble real traffic, which the model cannot imitate, so they are counted.
- * *timing: what SPI costs for this message.
  */
 static bool account_message(struct mcp2510_sim_chip *chip,
-			    const struct spi_message *msg,
-			    struct sim_spi_timing *timing)
+			    const struct spi_message *msg)
 {
 	u32 mode = msg->spi->mode & SPI_MODE_X_MASK;
 	const struct spi_transfer *xfer;
@@ -65,7 +66,6 @@ static bool account_message(struct mcp2510_sim_chip *chip,
 		chip->fails.spi--;
 		chip->harness.spi_failed++;
 	}
-	*timing = chip->sim->spi.timing;
 	mcp2510_sim_unlock(chip->sim);
 	return fail;
 }
@@ -135,16 +135,16 @@ static void end_period(struct msg_run *run, struct spi_transfer *first,
 
 /*
  * The lock is held over the whole message, so bus time only moves between
- * its periods when SPI time makes the controller sleep.  On real hardware
- * the periods of a message follow each other within microseconds; here
- * the guest may not run for milliseconds between two of them, and letting
- * the bus catch up with the clock in between would deliver frames there
- * that no real bus could (the driver's receive order relies on two frames
- * never arriving between two periods of one message).  Transfer delays are
- * honoured after the message.
+ * its periods when SPI time makes the controller sleep, and then exactly
+ * to the modelled moment CS rises: frames that end in the gap between two
+ * periods reach the chip before the next period acts, as on a board.  The
+ * guest may not run for milliseconds between two periods; letting the bus
+ * catch up with the clock further than modelled would deliver frames
+ * there that no board could (the driver's receive order relies on two
+ * frames never arriving between two periods of one message).  Transfer
+ * delays are honoured after the message.
  */
-static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
-		       const struct sim_spi_timing *timing)
+static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg)
 {
 	struct mcp2510_sim *sim = chip->sim;
 	u32 chip_max_hz = sim_chip_sck_max_hz(&chip->model);
@@ -162,7 +162,7 @@ static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg,
 		x.speed_hz = xfer->speed_hz;
 		x.cs_change = xfer->cs_change;
 		x.last = list_is_last(&xfer->transfer_list, &msg->transfers);
-		ret = mcp2510_sim_period_add(&run.period, &x, timing,
+		ret = mcp2510_sim_period_add(&run.period, &x, &sim->spi,
 					     chip_max_hz);
 		if (ret < 0)
 			break;
@@ -214,13 +214,11 @@ static int transfer_one_message(struct spi_controller *ctlr,
 				struct spi_message *msg)
 {
 	struct mcp2510_sim *sim = ctlr_to_sim(ctlr);
-	struct sim_spi_timing timing;
 	struct mcp2510_sim_chip *chip;
 	int ret;
 
 	chip = &sim->chips[spi_get_chipselect(msg->spi, 0)];
-	ret = account_message(chip, msg, &timing) ? -EIO :
-	      run_message(chip, msg, &timing);
+	ret = account_message(chip, msg) ? -EIO : run_message(chip, msg);
 	if (!ret && rts_fails(chip, msg))
 		ret = -EIO;
 	msg->status = ret;

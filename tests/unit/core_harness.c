@@ -36,13 +36,13 @@ static void ch_chip_spi(struct ch_node *node, struct sim_spi_msg *m,
 			const u8 *tx, u8 *rx, unsigned int len)
 {
 	struct sim_spi_bus *sb = &node->rig->spi;
-	u64 clock_ns;
+	u64 xfer_ns;
 
 	if (sb->timing.enabled) {
-		clock_ns = sim_spi_clock_ns(&sb->timing, len, node->spi_hz,
-					    sim_chip_sck_max_hz(&node->sim));
+		xfer_ns = sim_spi_xfer_ns(sb, len, node->spi_hz,
+					  sim_chip_sck_max_hz(&node->sim));
 		sim_bus_advance_to(&node->rig->bus,
-				   sim_spi_msg_period(sb, m, clock_ns));
+				   sim_spi_msg_period(sb, m, xfer_ns));
 	}
 	sim_chip_spi(&node->sim, tx, rx, len);
 }

@@ -20,7 +20,7 @@
 struct gatherer {
 	struct mcp2510_sim_period p;
 	u8 tx[CAP], rx[CAP];
-	struct sim_spi_timing t;
+	struct sim_spi_bus sb;
 };
 
 static void gatherer_init(struct gatherer *g)
@@ -36,7 +36,7 @@ static int add(struct gatherer *g, const void *tx, u32 len, bool cs_change,
 		.tx = tx, .len = len, .cs_change = cs_change, .last = last,
 	};
 
-	return mcp2510_sim_period_add(&g->p, &x, &g->t, 5000000);
+	return mcp2510_sim_period_add(&g->p, &x, &g->sb, 5000000);
 }
 
 /* Transfers without cs_change make one period; MISO goes back in order. */
@@ -147,14 +147,14 @@ static void test_period_clock(void **state)
 
 	(void)state;
 	gatherer_init(&g);
-	assert_int_equal(mcp2510_sim_period_add(&g.p, &slow, &g.t, 5000000), 0);
-	assert_int_equal(mcp2510_sim_period_add(&g.p, &fast, &g.t, 5000000), 1);
+	assert_int_equal(mcp2510_sim_period_add(&g.p, &slow, &g.sb, 5000000), 0);
+	assert_int_equal(mcp2510_sim_period_add(&g.p, &fast, &g.sb, 5000000), 1);
 	assert_int_equal(g.p.clock_ns, 0);	/* SPI time off */
 
 	gatherer_init(&g);
-	g.t.enabled = true;
-	assert_int_equal(mcp2510_sim_period_add(&g.p, &slow, &g.t, 5000000), 0);
-	assert_int_equal(mcp2510_sim_period_add(&g.p, &fast, &g.t, 5000000), 1);
+	g.sb.timing.enabled = true;
+	assert_int_equal(mcp2510_sim_period_add(&g.p, &slow, &g.sb, 5000000), 0);
+	assert_int_equal(mcp2510_sim_period_add(&g.p, &fast, &g.sb, 5000000), 1);
 	assert_int_equal(g.p.clock_ns, 16000 + 3200);
 	mcp2510_sim_period_next(&g.p);
 	assert_int_equal(g.p.clock_ns, 0);

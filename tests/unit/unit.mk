@@ -32,6 +32,8 @@ UNIT_SUITES += test_sim_modes
 test_sim_modes_SRCS := $(UNIT_SIM_SRCS)
 UNIT_SUITES += test_sim_timing
 test_sim_timing_SRCS := $(UNIT_SIM_SRCS)
+UNIT_SUITES += test_sim_spi_model
+test_sim_spi_model_SRCS := $(UNIT_SIM_SRCS)
 # the simulated SPI controller's kernel-free layer (tests/kmod/kmod_logic.c)
 UNIT_SUITES += test_kmod_logic
 test_kmod_logic_SRCS := tests/kmod/kmod_logic.c $(UNIT_SIM_SRCS)
@@ -57,6 +59,8 @@ UNIT_SUITES += test_core_health
 test_core_health_SRCS := $(UNIT_CORE_SRCS)
 UNIT_SUITES += test_core_spi_time
 test_core_spi_time_SRCS := $(UNIT_CORE_SRCS)
+UNIT_SUITES += test_core_spi_gap
+test_core_spi_gap_SRCS := $(UNIT_CORE_SRCS)
 UNIT_SUITES += test_userspace_text
 test_userspace_text_SRCS := $(US_UNIT_TEXT_SRCS)
 UNIT_SUITES += test_userspace_transport

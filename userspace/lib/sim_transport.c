@@ -20,12 +20,14 @@
  * used from the same thread.
  *
  * SPI takes no time unless MCP2510_SIM_SPI_TIME is set when a bus is
- * created, to "key=value,..." with the keys msg_ns, cs_setup_ns,
- * cs_hold_ns, ctlr_max_hz and irq_latency_ns (struct sim_spi_timing;
- * those not named are 0): each transfer then ends, and the chip acts,
- * when CS rises at the modelled time, at the handle's spi_hz clamped to
- * the chip's limit, and an interrupt reaches its handler irq_latency_ns
- * after INT fell.
+ * created, to "key=value,...": profile (none, pi, pi-rt, slow) at
+ * scale_pct (100 unless named) sets every cost at once, seed starts the
+ * latency draws, and the fields of struct sim_spi_timing by name (msg_ns,
+ * cs_setup_ns, ..., irq_latency_ns) set or override single costs (those
+ * neither named nor from a profile are 0).  Each transfer then ends, and
+ * the chip acts, when CS rises at the modelled time, at the handle's
+ * spi_hz clamped to the chip's limit, and an interrupt reaches its
+ * handler the drawn latency after INT fell.
  *
  * MCP2510_SIM_MISO=low or =high, read when a handle takes its chip,
  * sticks that chip's MISO line at 0x00 or 0xff (the model's spi_corrupt
@@ -125,14 +127,14 @@ static void timed_spi(struct sim_transport *s, const uint8_t *tx, uint8_t *rx,
 {
 	struct shared_bus *sb = s->shared;
 	struct sim_spi_msg m;
-	uint64_t clock_ns;
+	uint64_t xfer_ns;
 
 	if (sb->spi.timing.enabled) {
-		clock_ns = sim_spi_clock_ns(&sb->spi.timing, len, s->spi_hz,
-					    sim_chip_sck_max_hz(s->chip));
 		sim_spi_msg_begin(&sb->spi, &m, sim_bus_now(&sb->bus));
+		xfer_ns = sim_spi_xfer_ns(&sb->spi, len, s->spi_hz,
+					  sim_chip_sck_max_hz(s->chip));
 		sim_bus_advance_to(&sb->bus,
-				   sim_spi_msg_period(&sb->spi, &m, clock_ns));
+				   sim_spi_msg_period(&sb->spi, &m, xfer_ns));
 	}
 	sim_chip_spi(s->chip, tx, rx, len);
 	if (sb->spi.timing.enabled)
@@ -299,41 +301,97 @@ static struct shared_bus *shared_bus_find(const char *name)
 	return NULL;
 }
 
+#define SPI_TIME_KEY(field) { #field, offsetof(struct sim_spi_timing, field) }
+
+/* The value of key in "key=value,..." s, its length in *len; NULL: absent. */
+static const char *spi_time_value(const char *s, const char *key, size_t *len)
+{
+	size_t n = strlen(key);
+
+	for (; *s; s += strcspn(s, ","), s += *s == ',') {
+		if (!strncmp(s, key, n) && s[n] == '=') {
+			*len = strcspn(s + n + 1, ",");
+			return s + n + 1;
+		}
+	}
+	return NULL;
+}
+
+/* profile= and scale_pct= first, so that single costs may override them. */
+static int spi_time_profile(const char *p, struct sim_spi_timing *t)
+{
+	const char *name, *scale;
+	unsigned long pct = 100;
+	size_t len;
+	int profile;
+	char *end;
+
+	name = spi_time_value(p, "profile", &len);
+	if (!name)
+		return 0;
+	profile = sim_spi_profile_find(name, len);
+	scale = spi_time_value(p, "scale_pct", &len);
+	if (scale) {
+		errno = 0;
+		pct = strtoul(scale, &end, 10);
+		if (errno || end != scale + len || !len)
+			return -EINVAL;
+	}
+	if (profile < 0 || pct > UINT32_MAX)
+		return -EINVAL;
+	return sim_spi_profile_timing((unsigned int)profile, (uint32_t)pct, t);
+}
+
 /* MCP2510_SIM_SPI_TIME: 0, or -EINVAL for a malformed value. */
-static int spi_time_from_env(struct sim_spi_timing *t)
+static int spi_time_from_env(struct sim_spi_bus *spi)
 {
 	static const struct {
 		const char *key;
 		size_t offset;
 	} keys[] = {
-		{ "msg_ns", offsetof(struct sim_spi_timing, msg_ns) },
-		{ "cs_setup_ns", offsetof(struct sim_spi_timing, cs_setup_ns) },
-		{ "cs_hold_ns", offsetof(struct sim_spi_timing, cs_hold_ns) },
-		{ "ctlr_max_hz", offsetof(struct sim_spi_timing, ctlr_max_hz) },
-		{ "irq_latency_ns", offsetof(struct sim_spi_timing, irq_latency_ns) },
+		SPI_TIME_KEY(msg_ns), SPI_TIME_KEY(cs_setup_ns),
+		SPI_TIME_KEY(cs_hold_ns), SPI_TIME_KEY(ctlr_max_hz),
+		SPI_TIME_KEY(irq_latency_ns), SPI_TIME_KEY(irq_latency_p99_ns),
+		SPI_TIME_KEY(wake_ns), SPI_TIME_KEY(wake_p99_ns),
+		SPI_TIME_KEY(xfer_ns), SPI_TIME_KEY(idle_clocks),
+		SPI_TIME_KEY(poll_hz_per_byte), SPI_TIME_KEY(dma_min_len),
+		SPI_TIME_KEY(dma_ns),
 	};
+	struct sim_spi_timing *t = &spi->timing;
 	const char *p = getenv(SPI_TIME_ENV);
 
 	memset(t, 0, sizeof(*t));
 	if (!p || !*p)
 		return 0;
+	if (spi_time_profile(p, t))
+		return -EINVAL;
 	t->enabled = true;
 	while (*p) {
 		size_t i, n = strcspn(p, "=");
 		unsigned long v;
 		char *end;
 
+		if ((n == 7 && !strncmp(p, "profile", n)) ||
+		    (n == 9 && !strncmp(p, "scale_pct", n))) {
+			p += strcspn(p, ",");
+			p += *p == ',';
+			continue;
+		}
 		for (i = 0; i < sizeof(keys) / sizeof(keys[0]); i++)
 			if (strlen(keys[i].key) == n && !strncmp(p, keys[i].key, n))
 				break;
-		if (i == sizeof(keys) / sizeof(keys[0]) || p[n] != '=')
+		if ((i == sizeof(keys) / sizeof(keys[0]) &&
+		     (n != 4 || strncmp(p, "seed", n))) || p[n] != '=')
 			return -EINVAL;
 		errno = 0;
 		v = strtoul(p + n + 1, &end, 10);
 		if (errno || end == p + n + 1 || v > UINT32_MAX ||
 		    (*end && *end != ','))
 			return -EINVAL;
-		*(uint32_t *)((char *)t + keys[i].offset) = (uint32_t)v;
+		if (i == sizeof(keys) / sizeof(keys[0]))
+			sim_spi_seed(spi, (uint32_t)v);
+		else
+			*(uint32_t *)((char *)t + keys[i].offset) = (uint32_t)v;
 		p = *end ? end + 1 : end;
 	}
 	return 0;
@@ -369,7 +427,7 @@ static int shared_bus_get(const char *name, struct shared_bus **out)
 		strcpy(sb->name, name);
 		sim_bus_init(&sb->bus);
 		sim_spi_bus_init(&sb->spi);
-		if (spi_time_from_env(&sb->spi.timing) ||
+		if (spi_time_from_env(&sb->spi) ||
 		    bus_errors_from_env(&sb->bus)) {
 			free(sb);
 			return -EINVAL;
