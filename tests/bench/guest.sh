@@ -158,16 +158,13 @@ rx_search() {
 	done
 }
 
-# spi_time_on: the board profile's SPI and interrupt costs
-# (docs/simulator.md, "SPI time"); they apply to messages that start
-# afterwards, so before the interface comes up.
+# spi_time_on: the board profile's SPI and interrupt costs at its cost
+# scale (docs/simulator.md, "SPI time"); they apply to messages that
+# start afterwards, so before the interface comes up.
 spi_time_on() {
-	echo "$SPI_MSG_NS" >"$SIM/spi_msg_ns"
-	echo "$SPI_CS_SETUP_NS" >"$SIM/spi_cs_setup_ns"
-	echo "$SPI_CS_HOLD_NS" >"$SIM/spi_cs_hold_ns"
-	echo "$SPI_CTLR_MAX_HZ" >"$SIM/spi_ctlr_max_hz"
-	echo "$IRQ_LATENCY_NS" >"$SIM/irq_latency_ns"
-	echo 1 >"$SIM/spi_time"
+	echo "$SPI_PROFILE" >"$SIM/spi_profile"
+	echo "$SPI_COST_SCALE_PCT" >"$SIM/spi_cost_scale_pct"
+	echo "$SPI_SEED" >"$SIM/spi_seed"
 }
 
 # tx WHAT BITRATE COUNT: cangen sends COUNT frames as fast as can0 takes
@@ -267,9 +264,12 @@ NCPUS=$(grep -c '^cpu[0-9]' /proc/stat)
 timing=
 if [ "${SPI_TIME:-0}" = 1 ]; then
 	spi_time_on
-	timing="profile=$PROFILE spi_msg_ns=$SPI_MSG_NS spi_cs_setup_ns=$SPI_CS_SETUP_NS"
-	timing="$timing spi_cs_hold_ns=$SPI_CS_HOLD_NS spi_ctlr_max_hz=$SPI_CTLR_MAX_HZ"
-	timing="$timing irq_latency_ns=$IRQ_LATENCY_NS"
+	timing="profile=$PROFILE spi_profile=$SPI_PROFILE"
+	timing="$timing spi_cost_scale_pct=$SPI_COST_SCALE_PCT spi_seed=$SPI_SEED"
+	for f in spi_msg_ns spi_cs_setup_ns spi_cs_hold_ns spi_ctlr_max_hz \
+		irq_latency_ns irq_latency_p99_ns spi_wake_ns spi_wake_p99_ns spi_xfer_ns; do
+		timing="$timing $f=$(cat "$SIM/$f")"
+	done
 fi
 report setup "driver=$VM_DRIVER variant=$VM_VARIANT time_scale=$TIME_SCALE" \
 	"frames=$FRAMES cpu_frames=$CPU_FRAMES cpu_bitrate=$CPU_BITRATE cpus=$NCPUS" \

@@ -544,6 +544,17 @@ static void test_spi_time_from_environment(void **state)
 	assert_int_equal(overflows, 0);
 	assert_true(burst_received("sim:slowspi", 1000, &overflows) < 3);
 	assert_true(overflows > 0);
+	/* a board profile by name, at a scale, with a seed and an override */
+	assert_int_equal(setenv("MCP2510_SIM_SPI_TIME", "profile=nosuch", 1), 0);
+	assert_null(mcp2510_open("sim:badprofile", NULL));
+	assert_int_equal(errno, EINVAL);
+	assert_int_equal(setenv("MCP2510_SIM_SPI_TIME", "profile=pi,scale_pct=5", 1), 0);
+	assert_null(mcp2510_open("sim:badscale", NULL));
+	assert_int_equal(errno, EINVAL);
+	assert_int_equal(setenv("MCP2510_SIM_SPI_TIME",
+				"seed=3,profile=pi-rt,scale_pct=50,msg_ns=2000", 1), 0);
+	assert_int_equal(burst_received("sim:rtspi", 0, &overflows), 3);
+	assert_int_equal(overflows, 0);
 	assert_int_equal(unsetenv("MCP2510_SIM_SPI_TIME"), 0);
 	/* off: the slow clock costs nothing */
 	assert_int_equal(burst_received("sim:offspi", 1000, &overflows), 3);
