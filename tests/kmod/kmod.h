@@ -40,6 +40,7 @@ struct mcp2510_sim_harness_counters {
 	u64 spi_mode_errors;	/* messages in SPI mode 1 or 2 (the chip does 0 and 3) */
 	u64 spi_overspeed;	/* transfers faster than the chip's SCK limit */
 	u64 spi_late_ns;	/* SPI time on: bus time CS rose later than modelled */
+	u64 spi_gap_frames;	/* frames stored between two periods of one message */
 };
 
 struct mcp2510_sim_chip {

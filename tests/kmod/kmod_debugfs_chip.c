@@ -69,6 +69,7 @@ static int counters_show(struct seq_file *m, void *v)
 	seq_printf(m, "spi_mode_errors %llu\n", harness.spi_mode_errors);
 	seq_printf(m, "spi_overspeed %llu\n", harness.spi_overspeed);
 	seq_printf(m, "spi_late_ns %llu\n", harness.spi_late_ns);
+	seq_printf(m, "spi_gap_frames %llu\n", harness.spi_gap_frames);
 	seq_printf(m, "irqs_delivered %llu\n", line.delivered);
 	seq_printf(m, "int_edges_missed %llu\n", line.edges_missed);
 	seq_printf(m, "clock_stalls %llu\n", stalls);

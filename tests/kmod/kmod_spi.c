@@ -77,6 +77,7 @@ struct msg_run {
 	struct mcp2510_sim_period period;
 	struct sim_spi_msg time;	/* its place on the SPI bus */
 	bool begun;
+	u64 frames_rx;		/* the chip's count when the last period ended */
 };
 
 /*
@@ -115,13 +116,19 @@ static void end_period(struct msg_run *run, struct spi_transfer *first,
 	struct mcp2510_sim *sim = chip->sim;
 	struct mcp2510_sim_period *p = &run->period;
 	struct spi_transfer *xfer = first;
+	bool later = run->begun;
 
 	if (!run->begun) {
 		sim_spi_msg_begin(&sim->spi, &run->time, sim_bus_now(&sim->bus));
 		run->begun = true;
 	}
 	wait_cs_rise(chip, sim_spi_msg_period(&sim->spi, &run->time, p->clock_ns));
+	/* frames the chip stored since the message's previous period */
+	if (later)
+		chip->harness.spi_gap_frames +=
+			sim_chip_counters(&chip->model)->frames_rx - run->frames_rx;
 	sim_chip_spi(&chip->model, p->tx, p->rx, p->len);
+	run->frames_rx = sim_chip_counters(&chip->model)->frames_rx;
 	if (final)
 		sim_spi_msg_end(&sim->spi, &run->time, &chip->model);
 

@@ -59,6 +59,26 @@ echo "spi_busy_ns $busy for $periods CS periods, spi_late_ns $(sim_counter 1 spi
 [ "$busy" -ge $((FRAMES * MSG_NS)) ] || fail "spi_busy_ns $busy below $FRAMES messages"
 [ "$busy" -ge $((periods * 2 * CS_NS)) ] || fail "spi_busy_ns $busy below $periods periods"
 echo 0 >"$SIM/spi_time"
+
+echo "== a board profile and its cost scale"
+[ "$(cat "$SIM/spi_profile")" = none ] || fail "a profile is set by default"
+refused spi_profile nosuch
+refused spi_cost_scale_pct 5
+echo pi >"$SIM/spi_profile"
+[ "$(cat "$SIM/spi_time")" -eq 1 ] || fail "spi_profile pi left SPI time off"
+xfer=$(cat "$SIM/spi_xfer_ns")
+[ "$xfer" -gt 0 ] || fail "spi_profile pi has no per-transfer cost"
+echo 200 >"$SIM/spi_cost_scale_pct"
+[ "$(cat "$SIM/spi_xfer_ns")" -eq $((2 * xfer)) ] || fail "the cost scale did not double spi_xfer_ns"
+receive
+busy=$(sim_counter 1 spi_busy_ns)
+periods=$(sim_counter 1 spi_transfers)
+echo "pi x2: spi_busy_ns $busy for $periods CS periods"
+# every period pays at least one transfer's set-up
+[ "$busy" -ge $((periods * 2 * xfer)) ] || fail "spi_busy_ns $busy below $periods transfers"
+echo none >"$SIM/spi_profile"
+[ "$(cat "$SIM/spi_time")" -eq 0 ] || fail "spi_profile none left SPI time on"
+echo 100 >"$SIM/spi_cost_scale_pct"
 ip link set can1 down
 
 echo "sim-spi-time: ok"
