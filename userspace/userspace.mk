@@ -65,7 +65,7 @@ US_LIB_SRCS := $(addprefix $(US_DIR)/lib/,open.c config.c run.c events.c \
 		inspect.c spidev.c) $(call us_gpio_srcs,$(US_GPIOD_MAJOR))
 US_SIM_OBJ := $(US_OBJ)/sim-transport.o
 # the in-process simulated buses and the one shared through a broker
-US_SIM_SRCS := $(addprefix $(US_DIR)/lib/,sim_transport.c simbus_wire.c \
+US_SIM_SRCS := $(addprefix $(US_DIR)/lib/,sim_transport.c sim_env.c simbus_wire.c \
 		simbus_connect.c simbus_broker.c simbus_client.c)
 ifeq ($(MCP2510_SIM),1)
 US_SIM_PARTS := $(US_SIM_SRCS) $(SIM_SRCS)

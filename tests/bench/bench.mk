@@ -1,7 +1,7 @@
 # tests/bench/bench.mk: make bench, figures rather than tests
 # (docs/performance.md).  Not part of make check: it asserts nothing.
 #
-#   make bench [BENCH_PROFILES="base pi slow"]
+#   make bench [BENCH_PROFILES="base pi slow"] (also pi-rt, NAME@50, NAME@200)
 #              [BENCH_FRAMES=100] [BENCH_CPU_FRAMES=1000]
 #              [BENCH_TIME_SCALE=10] [BENCH_BITRATES="10000 ... 1000000"]
 #              [BENCH_TIMED_FRAMES=100] [BENCH_TIMED_CPU_FRAMES=200]
@@ -12,7 +12,8 @@
 # Boots Debian's 6.1 kernel four times per profile (mcp2510.ko and
 # mainline mcp251x, each on a simulated MCP2510 and MCP2515): "base" with
 # SPI that takes no time (and the userspace port's bench on the host),
-# "pi" and "slow" with the simulator's SPI time set to a board's costs,
+# "pi", "pi-rt" and "slow" with the simulator's SPI time set to a board
+# profile's costs (at a cost scale with NAME@50 or NAME@200),
 # and for those two four more boots of Debian's 6.12 PREEMPT_RT kernel for
 # the latency figures alone.  Prints tables and writes build/bench/summary.json and the figures and
 # plot of docs/performance.md.

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * The driver core against a 1 Mbit/s flood when SPI costs what it costs
- * on a small board (a Raspberry Pi class host): every message pays a host
- * overhead, every CS period its setup and hold and 8 SCK cycles a byte at
- * the chip's top clock, and every interrupt a delivery latency.  Time is
+ * The driver core against a 1 Mbit/s flood under fixed, simple SPI costs:
+ * every message pays a host overhead, every CS period its setup and hold
+ * and 8 SCK cycles a byte at the chip's top clock, and every interrupt a
+ * constant delivery latency.  The figures are round ones, not a board's
+ * (test_core_spi_gap.c runs the calibrated board profiles), so the
+ * assertions below pin the core's message and period counts.  Time is
  * the model's only, so the outcome does not depend on the host running
  * the test.
  */
@@ -22,7 +24,7 @@
 #define FRAME_BITS_MIN	111
 #define FRAME_BITS_MAX	135
 
-/* a Pi with its SPI controller: ~10 us a message, ~20 us to the handler */
+/* a fast host: 10 us a message, 20 us to the handler */
 static const struct sim_spi_timing pi_like = {
 	.enabled = true,
 	.msg_ns = 10000,
@@ -44,7 +46,7 @@ struct flood_result {
 	u64 handler_calls;	/* interrupts serviced */
 };
 
-/* make bench's slow board: 40 us a message, SCK at most 4 MHz, 60 us to the handler */
+/* a slow host: 40 us a message, SCK at most 4 MHz, 60 us to the handler */
 static const struct sim_spi_timing slow_board_timing = {
 	.enabled = true,
 	.msg_ns = 40000,
@@ -256,7 +258,7 @@ static void test_off_is_instant(void **state)
 }
 
 /*
- * make bench's slow board, a 1 Mbit/s flood past what it can take: the
+ * The slow host, a 1 Mbit/s flood past what it can take: the
  * chip overflows about every pass, and each overflow's handling keeps
  * both buffers full while it lasts.  A pass costs the interrupt latency,
  * READ STATUS or CANINTF/EFLG, the two buffers (one message each) and one
