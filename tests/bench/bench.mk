@@ -67,3 +67,11 @@ bench: vm-kernel-6.1 vm-kernel-rt
 		BENCH_TIMED_TX_BITRATES="$(BENCH_TIMED_TX_BITRATES)" \
 		BENCH_DOC=$(TOP)/docs/performance.md \
 		$(TOP)/tests/bench/run
+
+# The report's counting and stall rules on canned guest lines
+# (tests/bench/test_report.py): a second, no QEMU.
+.PHONY: bench-check
+bench-check:
+	@$(ENSURE) python3
+	@python3 $(TOP)/tests/bench/test_report.py
+CHECK_STEPS += bench-check
