@@ -55,6 +55,7 @@ class Run:
     def __init__(self, log):
         self.log = log
         self.missing = []
+        self.missing_rates = {}
         self.tries = 0
         self.kept = 0
 
@@ -66,6 +67,7 @@ class Run:
             self.kept += 1
             if void(run):
                 self.missing.append(what if rate is None else f"{what} {rate}")
+                self.missing_rates.setdefault(what, []).append(rate)
             else:
                 out[rate] = run
         return out
@@ -160,11 +162,17 @@ def latency_figures(r, scale):
     return fig
 
 
-def flood_figures(fig, floods, bursts):
-    """RX loss and damage, TX utilisation and damage, by bit rate."""
+def flood_figures(fig, floods, bursts, r):
+    """RX loss and damage, TX utilisation and damage, by bit rate (None
+    at a bit rate whose measurement is missing)."""
     fig.update(rx_loss={}, rx_damage={}, rx_loss_bound_95={}, rx_overflows={},
                rx_sock_drops={}, tx_bus_utilisation={}, tx_idle_us_per_gap={},
                tx_damage={})
+    for what, keys in (("rx", ("rx_loss", "rx_damage", "rx_loss_bound_95")),
+                       ("tx", ("tx_bus_utilisation", "tx_idle_us_per_gap", "tx_damage"))):
+        for rate in r.missing_rates.get(what, []):
+            for key in keys:
+                fig[key][str(rate)] = None
     for rate, run in floods.items():
         key = str(rate)
         fig["rx_loss"][key] = round(run["lost"] / run["frames"], 4)
@@ -191,7 +199,7 @@ def figures(log):
     floods = r.get("rx")
     bursts = r.get("tx")
     if "idle" in log:
-        flood_figures(fig, floods, bursts)
+        flood_figures(fig, floods, bursts, r)
         fig.update(cpu_figures(rx, tx, idle))
         if "rx-search-incomplete" in log:
             r.missing.append("rx search")

@@ -156,8 +156,9 @@ def write_plot_data(out, summary):
                 f.write(f"# {driver}.ko on {chip.upper()}: bitrate util_pct loss_pct\n")
                 for rate in sorted(fig["rx_loss"], key=int):
                     util = fig["tx_bus_utilisation"].get(rate)
+                    loss = fig["rx_loss"][rate]
                     f.write(f"{rate} {'NaN' if util is None else 100 * util}"
-                            f" {100 * fig['rx_loss'][rate]}\n")
+                            f" {'NaN' if loss is None else 100 * loss}\n")
                 f.write("\n\n")
     return path
 

@@ -50,9 +50,9 @@ def cost_table(summary):
 def rate_table(summary, key, title, extra=None):
     rates = sorted({int(r) for driver, _, f in rows(summary)
                     if driver != "userspace" for r in f[key]})
-    head = f"| {title} | chip | " + " | ".join(f"{r // 1000}k" for r in rates)
-    head += " | zero loss up to |" if extra else " |"
-    lines = [head, "|---|---|" + "---|" * (len(rates) + (1 if extra else 0))]
+    head = [title, "chip"] + [f"{r // 1000}k" for r in rates]
+    head += ["zero loss up to"] if extra else []
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for driver, chip, f in rows(summary):
         if driver == "userspace":
             continue
@@ -62,10 +62,8 @@ def rate_table(summary, key, title, extra=None):
                      for c, r in zip(cells, rates)]
         if key == "rx_loss":
             cells = [f"{c} ({f['rx_overflows'].get(str(r), '-')})" for c, r in zip(cells, rates)]
-        line = f"| {driver} | {chip} | " + " | ".join(cells)
-        if extra:
-            line += f" | {extra(f)} |"
-        lines.append(line + ("" if extra else " |"))
+        cells = [driver, chip] + cells + ([extra(f)] if extra else [])
+        lines.append("| " + " | ".join(cells) + " |")
     return lines
 
 
