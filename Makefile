@@ -60,6 +60,7 @@ help:
 	@echo "make install   mcp2510.ko (DESTDIR= stages it); make uninstall"
 	@echo "make deb       Debian packages in build/deb; make deb-check (root)"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
+	@echo "make bench-check  the bench report's counting on canned logs"
 	@echo "make fresh-root-check  make demo in minimal Debian 12 and 13 roots"
 	@echo "make kernels-news  is there a kernel series newer than the ones tested?"
 	@echo "make clean     remove build products, keep downloads, kernels and roots"

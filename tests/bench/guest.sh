@@ -4,14 +4,20 @@
 # loaded.  Prints one "bench: WHAT key=value..." line per measurement on the
 # console for tests/bench/report.py; it asserts nothing about speed.
 #
-# /extra/bench.conf sets FRAMES, RX_BITRATES, TX_BITRATES, CPU_FRAMES,
-# CPU_BITRATE, TIME_SCALE (the value given to mcp2510-sim.ko),
-# STALL_RETRIES (0 if unset: see again() below) and LATENCY_ONLY (1: the
-# latency measurements alone, for the PREEMPT_RT kernel).  For a
-# board profile it also sets PROFILE, SPI_TIME=1, the SPI time switches
-# (SPI_MSG_NS, SPI_CS_SETUP_NS, SPI_CS_HOLD_NS, SPI_CTLR_MAX_HZ,
-# IRQ_LATENCY_NS) and RX_SEARCH=1: then the RX bit rates (ascending) are
-# bisected for the highest one without loss instead of swept.
+# /extra/bench.conf sets FLOOD_FRAMES (frames per RX flood and TX burst),
+# FRAMES (per latency and timestamp measurement, at most 256: the bus
+# monitor), RX_BITRATES, TX_BITRATES, CPU_FRAMES, CPU_BITRATE,
+# COMPARE_BITRATES and SATURATION_BITRATE (latency and timestamps: where
+# every driver keeps up, and at saturation), TIME_SCALE (the value given
+# to mcp2510-sim.ko), STALL_TRIES (see again() below) and LATENCY_ONLY (1:
+# the latency measurements alone, for the PREEMPT_RT kernel).  For a
+# board profile it also sets PROFILE, COST_SCALE_PCT (the profile's costs
+# scaled, in percent), SPI_TIME=1, SPI_SEED (the seed of the model's
+# latency draws) and RX_SEARCH=1: then the RX bit rates (ascending) are bisected for the
+# highest one without loss instead of swept.
+#
+# Floods and bursts are counted end to end by can-flood (tests/vm/guest):
+# RX at can0's socket, TX in the bus monitor, where the phantom sees them.
 #
 # The script stays quiet while a burst runs (one sleep, no polling): under
 # TCG every fork of busybox costs the guest tens of milliseconds, which
@@ -23,17 +29,20 @@ set -eu
 # bits of the longest 8-byte standard frame, stuffing and intermission
 # included: an upper bound for how long a burst takes on the bus
 FRAME_BITS_MAX=135
-FLOOD_FRAME=123#0011223344556677
+# the phantom's floods: it adds frame k's number to bytes 0-3 and leaves
+# the check word in bytes 4-7 as it is (can-flood -w)
+FLOOD_WORD=A55A0FF0
+FLOOD_TEMPLATE=123#00000000$FLOOD_WORD
 
 # report WHAT FIELDS...: one measurement's line.  After a cpu_mark it also
-# gives the bus clock's stalls since then and sets STALLED to 1 if there
+# gives the bus clock's stalls since then and sets VOID to 1 if there
 # were any (docs/simulator.md, "Time": the measurement is void).
 report() {
-	STALLED=0
+	VOID=0
 	if [ -n "${MARK_STALLS:-}" ]; then
 		read -r _stalls <"$SIM/clock_stalls"
 		_stalls=$((_stalls - MARK_STALLS))
-		[ "$_stalls" -eq 0 ] || STALLED=1
+		[ "$_stalls" -eq 0 ] || VOID=1
 		echo "bench: $* stalls=$_stalls"
 		MARK_STALLS=
 	else
@@ -41,13 +50,13 @@ report() {
 	fi
 }
 
-# again COMMAND...: COMMAND (one measurement), repeated up to STALL_RETRIES
-# more times while the bus clock stalled during it.  report.py keeps the
-# last of each.
+# again COMMAND...: COMMAND (one measurement), tried up to STALL_TRIES
+# times in all until it is not void.  report.py takes the last try of
+# each; a void one is a missing figure, and make bench fails.
 again() {
-	_left=${STALL_RETRIES:-0}
+	_left=$((${STALL_TRIES:?} - 1))
 	"$@"
-	while [ "$STALLED" = 1 ] && [ "$_left" -gt 0 ]; do
+	while [ "$VOID" = 1 ] && [ "$_left" -gt 0 ]; do
 		_left=$((_left - 1))
 		"$@"
 	done
@@ -82,9 +91,6 @@ counters() {
 
 flood_done() { [ "$(cat "$SIM/flood")" -eq 0 ]; }
 
-# sent_all COUNT: chip 0 has sent COUNT frames since its counters were reset.
-sent_all() { [ "$(sim_counter 0 frames_tx)" -ge "$1" ]; }
-
 # quiet_wait SECONDS COMMAND...: sleep through the expected time, then poll
 # COMMAND (a slow guest) for up to a minute.
 quiet_wait() {
@@ -113,24 +119,53 @@ idle() {
 	report idle "seconds=$1 $BUSY"
 }
 
+# counting FILE COMMAND...: COMMAND (can-flood recv or check) in the
+# background, its output in FILE, once it listens; COUNTING is its pid.
+counting() {
+	_file=$1
+	shift
+	: >"$_file"
+	"$@" >"$_file" &
+	COUNTING=$!
+	wait_for 20 first_line_is ready "$_file" || fail "$1 never listened"
+}
+first_line_is() { read -r _l <"$2" && [ "$_l" = "$1" ]; }
+
+# counted FILE: once the can-flood that writes FILE ended (it exits 1
+# when the flood was not lossless), sets COUNT to its count as key=value
+# words without its mode and frames, and LOSSLESS to 1 or 0.
+counted() {
+	wait "$COUNTING" || [ $? -eq 1 ] || fail "can-flood failed: $(cat "$1")"
+	COUNT=$(sed -n 's/^flood: mode=[a-z]* frames=[0-9]* //p' "$1")
+	[ -n "$COUNT" ] || fail "can-flood counted nothing: $(cat "$1")"
+	LOSSLESS=${COUNT#*lossless=}
+	LOSSLESS=${LOSSLESS%% *}
+}
+
+# idle_ms BITRATE: can-flood's -t, no frame for this long ends a count:
+# twenty frames' bus time, at least 3 s.
+idle_ms() {
+	awk -v br="$1" -v s="$TIME_SCALE" -v b="$FRAME_BITS_MAX" \
+		'BEGIN { t = 20 * b * s * 1000 / br; printf "%d\n", t < 3000 ? 3000 : t }'
+}
+
 # rx WHAT BITRATE COUNT: the phantom floods COUNT frames back to back to
-# can0; WHAT names the measurement.  Sets RX_LOST to the frames that did
-# not reach the stack.
+# can0 while can-flood counts them at the socket; WHAT names the
+# measurement.  Sets LOSSLESS.
 rx() {
 	start_at "$2"
 	_secs=$(burst_seconds "$3" "$2")
-	rx0=$(if_stat can0 rx_packets)
+	counting /tmp/flood.txt can-flood recv can0 "$3" -w "$FLOOD_WORD" \
+		-t "$(idle_ms "$2")"
 	cpu_mark
-	echo "$3 $FLOOD_FRAME $2" >"$SIM/flood"
+	echo "$3 $FLOOD_TEMPLATE $2" >"$SIM/flood"
 	quiet_wait "$_secs" flood_done ||
 		fail "the flood at $2 bit/s never ended"
-	# what the chip holds still reaches the stack after the last frame
-	sleep 0.5
+	# what the chip holds still reaches the socket after the last frame
+	counted /tmp/flood.txt
 	cpu_busy
-	_got=$(($(if_stat can0 rx_packets) - rx0))
-	RX_LOST=$(($3 - _got))
 	report "$1" "bitrate=$2 frames=$3 seconds=$_secs $BUSY" \
-		"received=$_got $(counters)"
+		"$COUNT $(counters)"
 }
 
 # nth N WORDS...: the Nth of WORDS (from 1).
@@ -140,16 +175,21 @@ nth() {
 }
 
 # rx_search: bisect RX_BITRATES (ascending) for the highest bit rate at
-# which a flood of FRAMES loses nothing, assuming loss only grows with the
-# bit rate.  The highest comes first: on a Raspberry Pi class profile a
-# driver should keep up there, and then one flood settles it.
+# which a flood of FLOOD_FRAMES is lossless, assuming loss only grows
+# with the bit rate.  The highest comes first: on a Raspberry Pi class
+# profile a driver should keep up there, and then one flood settles it.
+# A flood still void after its tries ends the search without a result.
 rx_search() {
 	set -- $RX_BITRATES
 	_n=$#
 	_lo=0 _hi=$((_n + 1)) _try=$_n
 	while [ $((_hi - _lo)) -gt 1 ]; do
-		again rx rx "$(nth "$_try" $RX_BITRATES)" "$FRAMES"
-		if [ "$RX_LOST" -eq 0 ]; then
+		again rx rx "$(nth "$_try" $RX_BITRATES)" "$FLOOD_FRAMES"
+		if [ "$VOID" = 1 ]; then
+			report rx-search-incomplete
+			return
+		fi
+		if [ "$LOSSLESS" = 1 ]; then
 			_lo=$_try
 		else
 			_hi=$_try
@@ -162,29 +202,35 @@ rx_search() {
 # scale (docs/simulator.md, "SPI time"); they apply to messages that
 # start afterwards, so before the interface comes up.
 spi_time_on() {
-	echo "$SPI_PROFILE" >"$SIM/spi_profile"
-	echo "$SPI_COST_SCALE_PCT" >"$SIM/spi_cost_scale_pct"
+	echo "$PROFILE" >"$SIM/spi_profile"
+	echo "$COST_SCALE_PCT" >"$SIM/spi_cost_scale_pct"
 	echo "$SPI_SEED" >"$SIM/spi_seed"
 }
 
-# tx WHAT BITRATE COUNT: cangen sends COUNT frames as fast as can0 takes
-# them; the phantom acknowledges and the bus monitor times them.  The
-# queue holds the whole burst: with the default of 10 frames, cangen -p
-# spins on ENOBUFS (poll reports the socket writable) and its spinning,
-# not the driver, would be the CPU figure.
+# tx WHAT BITRATE COUNT: can-flood sends COUNT unique frames as fast as
+# can0 takes them; the phantom acknowledges, and a second can-flood
+# counts them as the bus monitor records them.  The queue holds the
+# whole burst, so the sender never waits on ENOBUFS.  The monitor keeps
+# 256 records: a counter that fell behind misses some, which frames_tx
+# shows (monitor_missed), and the measurement is void.
 tx() {
 	ip link set can0 txqueuelen $(($3 + 16))
 	start_at "$2"
 	_secs=$(burst_seconds "$3" "$2")
+	counting /tmp/flood.txt can-flood check "$3" -f "$SIM/monitor" \
+		-t "$(idle_ms "$2")"
 	cpu_mark
-	cangen -g 0 -p 1000 -n "$3" -I 123 -L 8 -D 0011223344556677 can0 ||
-		fail "cangen at $2 bit/s"
-	quiet_wait "$_secs" sent_all "$3" ||
-		fail "can0 sent $(sim_counter 0 frames_tx) of $3 frames at $2 bit/s"
-	sleep 0.5
+	can-flood send can0 "$3" >/tmp/flood-send.txt ||
+		fail "can-flood send at $2 bit/s: $(cat /tmp/flood-send.txt)"
+	sleep "$_secs"
+	counted /tmp/flood.txt
 	cpu_busy
+	_sent=$(sim_counter 0 frames_tx)
+	_seen=${COUNT#received=}
+	_seen=${_seen%% *}
 	report "$1" "bitrate=$2 frames=$3 seconds=$_secs $BUSY" \
-		"$(counters) $(monitor_timing)"
+		"$COUNT monitor_missed=$((_sent - _seen)) $(counters) $(monitor_timing)"
+	[ "$_sent" -le "$_seen" ] || VOID=1
 }
 
 # percentiles FILE FIELD NAME: of column FIELD of FILE's lines (ns), the
@@ -238,7 +284,7 @@ rxts() {
 	_pid=$!
 	wait_for 20 rxts_ready || fail "can-tstamp never listened"
 	cpu_mark
-	echo "$2 $FLOOD_FRAME $1" >"$SIM/flood"
+	echo "$2 $FLOOD_TEMPLATE $1" >"$SIM/flood"
 	wait "$_pid" || fail "can-tstamp failed"
 	sed 1d /tmp/rxts.txt >/tmp/rxts.data
 	report rxts "bitrate=$1 frames=$2 $(percentiles /tmp/rxts.data 2 err)"
@@ -264,21 +310,26 @@ NCPUS=$(grep -c '^cpu[0-9]' /proc/stat)
 timing=
 if [ "${SPI_TIME:-0}" = 1 ]; then
 	spi_time_on
-	timing="profile=$PROFILE spi_profile=$SPI_PROFILE"
-	timing="$timing spi_cost_scale_pct=$SPI_COST_SCALE_PCT spi_seed=$SPI_SEED"
+	timing="profile=$PROFILE spi_profile=$PROFILE"
+	timing="$timing cost_scale_pct=$COST_SCALE_PCT spi_seed=$SPI_SEED"
 	for f in spi_msg_ns spi_cs_setup_ns spi_cs_hold_ns spi_ctlr_max_hz \
 		irq_latency_ns irq_latency_p99_ns spi_wake_ns spi_wake_p99_ns spi_xfer_ns; do
 		timing="$timing $f=$(cat "$SIM/$f")"
 	done
 fi
 report setup "driver=$VM_DRIVER variant=$VM_VARIANT time_scale=$TIME_SCALE" \
-	"frames=$FRAMES cpu_frames=$CPU_FRAMES cpu_bitrate=$CPU_BITRATE cpus=$NCPUS" \
+	"frames=$FRAMES flood_frames=$FLOOD_FRAMES cpu_frames=$CPU_FRAMES" \
+	"cpu_bitrate=$CPU_BITRATE cpus=$NCPUS stall_tries=$STALL_TRIES" \
+	"saturation_bitrate=$SATURATION_BITRATE" \
 	"clocksource=$(cat /sys/devices/system/clocksource/clocksource0/current_clocksource)" \
 	"spi_time=$(cat "$SIM/spi_time") clock_stalls=$(cat "$SIM/clock_stalls") $timing"
 can_up can0 "$CPU_BITRATE"
-# one frame at a time, end to end (FRAMES of each, at most 256: the monitor)
-again tx_latency "$CPU_BITRATE" "$FRAMES"
-again rx_latency "$CPU_BITRATE" "$FRAMES"
+# one frame at a time, end to end (FRAMES of each, at most 256: the
+# monitor), where every driver keeps up and at saturation
+for br in $COMPARE_BITRATES $SATURATION_BITRATE; do
+	again tx_latency "$br" "$FRAMES"
+	again rx_latency "$br" "$FRAMES"
+done
 if [ "${LATENCY_ONLY:-0}" = 1 ]; then
 	ip link set can0 down
 	report "done" "clock_stalls=$(cat "$SIM/clock_stalls")"
@@ -289,17 +340,20 @@ fi
 again idle "$(burst_seconds "$CPU_FRAMES" "$CPU_BITRATE")"
 again rx cpu-rx "$CPU_BITRATE" "$CPU_FRAMES"
 again tx cpu-tx "$CPU_BITRATE" "$CPU_FRAMES"
-# receive timestamps against the bus's end of frame, at the same bit rate
-again rxts "$CPU_BITRATE" "$FRAMES"
+# receive timestamps against the bus's end of frame in a flood, where
+# every driver keeps up and at saturation
+for br in $COMPARE_BITRATES $SATURATION_BITRATE; do
+	again rxts "$br" "$FRAMES"
+done
 if [ "${RX_SEARCH:-0}" = 1 ]; then
 	rx_search
 else
 	for br in $RX_BITRATES; do
-		rx rx "$br" "$FRAMES"
+		again rx rx "$br" "$FLOOD_FRAMES"
 	done
 fi
 for br in $TX_BITRATES; do
-	again tx tx "$br" "$FRAMES"
+	again tx tx "$br" "$FLOOD_FRAMES"
 done
 ip link set can0 down
 # the bus clock's stalls since the module was loaded: the run is void if

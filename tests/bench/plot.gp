@@ -13,7 +13,7 @@ set key bottom left
 set yrange [0:105]
 
 titles = "mcp2510.ko/MCP2510 mcp2510.ko/MCP2515 mcp251x/MCP2510 mcp251x/MCP2515"
-set title "TX: bus utilisation, cangen -g 0"
+set title "TX: bus utilisation, can-flood send"
 set ylabel "% of the most the bus carries"
 plot for [i=0:3] data index i using 1:2 with linespoints lw 2 title word(titles, i + 1)
 

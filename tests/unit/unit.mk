@@ -37,6 +37,8 @@ test_sim_spi_model_SRCS := $(UNIT_SIM_SRCS)
 # the simulated SPI controller's kernel-free layer (tests/kmod/kmod_logic.c)
 UNIT_SUITES += test_kmod_logic
 test_kmod_logic_SRCS := tests/kmod/kmod_logic.c $(UNIT_SIM_SRCS)
+# can-flood's counting (tests/vm/guest/flood_count.h)
+UNIT_SUITES += test_flood_count
 
 # the portable driver core over the chip model (tests/unit/core_harness.h)
 UNIT_CORE_SRCS := $(CORE_SRCS) $(CORE_USER_SRCS) $(SIM_SRCS) \
