@@ -29,10 +29,9 @@ set -eu
 # bits of the longest 8-byte standard frame, stuffing and intermission
 # included: an upper bound for how long a burst takes on the bus
 FRAME_BITS_MAX=135
-# the phantom's floods: it adds frame k's number to bytes 0-3 and leaves
-# the check word in bytes 4-7 as it is (can-flood -w)
-FLOOD_WORD=A55A0FF0
-FLOOD_TEMPLATE=123#00000000$FLOOD_WORD
+# the phantom's floods: frame k carries k in bytes 0-3 and, "checked",
+# the CRC-32 can-flood checks in bytes 4-7
+FLOOD_TEMPLATE=123#0000000000000000
 
 # report WHAT FIELDS...: one measurement's line.  After a cpu_mark it also
 # gives the bus clock's stalls since then and sets VOID to 1 if there
@@ -155,10 +154,9 @@ idle_ms() {
 rx() {
 	start_at "$2"
 	_secs=$(burst_seconds "$3" "$2")
-	counting /tmp/flood.txt can-flood recv can0 "$3" -w "$FLOOD_WORD" \
-		-t "$(idle_ms "$2")"
+	counting /tmp/flood.txt can-flood recv can0 "$3" -t "$(idle_ms "$2")"
 	cpu_mark
-	echo "$3 $FLOOD_TEMPLATE $2" >"$SIM/flood"
+	echo "$3 $FLOOD_TEMPLATE $2 checked" >"$SIM/flood"
 	quiet_wait "$_secs" flood_done ||
 		fail "the flood at $2 bit/s never ended"
 	# what the chip holds still reaches the socket after the last frame

@@ -228,6 +228,7 @@ static ssize_t flood_write(struct file *file, const char __user *ubuf,
 	char command[COMMAND_LEN], *cursor = command, *word, *frame;
 	struct can_frame cf;
 	u32 count, bitrate;
+	bool checked;
 	int ret;
 
 	ret = read_command(ubuf, len, command, sizeof(command));
@@ -238,11 +239,18 @@ static ssize_t flood_write(struct file *file, const char __user *ubuf,
 		return -EINVAL;
 	frame = next_word(&cursor);
 	if (mcp2510_sim_frame_parse(frame ? frame : FLOOD_DEFAULT_FRAME, &cf) ||
-	    parse_bitrate(next_word(&cursor), &bitrate) || next_word(&cursor))
+	    parse_bitrate(next_word(&cursor), &bitrate))
+		return -EINVAL;
+	word = next_word(&cursor);
+	checked = word && !strcmp(word, "checked");
+	if ((word && !checked) || next_word(&cursor))
 		return -EINVAL;
 
 	mcp2510_sim_lock(sim);
-	ret = sim_phantom_flood(&sim->bus, &cf, count, bitrate);
+	if (checked)
+		ret = sim_phantom_flood_checked(&sim->bus, &cf, count, bitrate);
+	else
+		ret = sim_phantom_flood(&sim->bus, &cf, count, bitrate);
 	mcp2510_sim_unlock(sim);
 	return ret ? ret : len;
 }

@@ -257,6 +257,7 @@ struct sim_phantom {
 	struct can_frame flood;		/* template of the flood in progress */
 	u32 flood_rate;			/* bit time, ns */
 	u32 flood_left, flood_sent;
+	bool flood_checked;		/* bytes 4-7 carry a CRC-32 */
 };
 
 struct sim_bus {
@@ -383,6 +384,14 @@ int sim_phantom_send(struct sim_bus *bus, const struct can_frame *cf, u32 bitrat
  */
 int sim_phantom_flood(struct sim_bus *bus, const struct can_frame *cf,
 		      u32 count, u32 bitrate);
+/*
+ * The same with every frame checkable end to end: bytes 4-7 of frame k
+ * are the CRC-32 (reflected, polynomial 0xEDB88320) of the identifier and
+ * of bytes 0-3, each as four bytes little-endian, as can-flood
+ * (tests/vm/guest) checks them.  @cf must have eight data bytes.
+ */
+int sim_phantom_flood_checked(struct sim_bus *bus, const struct can_frame *cf,
+			      u32 count, u32 bitrate);
 /* Frames the phantom still has to send, queue and flood together. */
 u32 sim_phantom_pending(const struct sim_bus *bus);
 

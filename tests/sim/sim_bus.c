@@ -110,10 +110,36 @@ u32 sim_phantom_pending(const struct sim_bus *bus)
 	return sim_phantom_pending_count(bus);
 }
 
-/* frame k of a flood: the first min(len, 4) data bytes, little endian, + k */
+static void sim_put_le32(u8 *b, u32 v)
+{
+	unsigned int i;
+
+	for (i = 0; i < 4; i++)
+		b[i] = v >> (8 * i);
+}
+
+/* CRC-32, reflected, polynomial 0xEDB88320: the check of a checked flood */
+static u32 sim_crc32(const u8 *p, unsigned int len)
+{
+	u32 crc = 0xffffffff;
+	unsigned int bit;
+
+	while (len--) {
+		crc ^= *p++;
+		for (bit = 0; bit < 8; bit++)
+			crc = (crc >> 1) ^ (0xedb88320 & -(crc & 1));
+	}
+	return ~crc;
+}
+
+/*
+ * frame k of a flood: the first min(len, 4) data bytes, little endian, + k;
+ * in a checked flood bytes 4-7 then carry the CRC-32 of the id and bytes 0-3
+ */
 static void sim_flood_frame(const struct sim_phantom *ph, struct can_frame *cf)
 {
 	unsigned int n = ph->flood.len < 4 ? ph->flood.len : 4, i;
+	u8 checked[8];
 	u32 v = 0;
 
 	*cf = ph->flood;
@@ -122,6 +148,11 @@ static void sim_flood_frame(const struct sim_phantom *ph, struct can_frame *cf)
 	v += ph->flood_sent;
 	for (i = 0; i < n; i++)
 		cf->data[i] = v >> (8 * i);
+	if (!ph->flood_checked)
+		return;
+	sim_put_le32(checked, cf->can_id);
+	memcpy(checked + 4, cf->data, 4);
+	sim_put_le32(cf->data + 4, sim_crc32(checked, sizeof(checked)));
 }
 
 /* The phantom's next frame and its bit time; false if it has none. */
@@ -219,7 +250,21 @@ int sim_phantom_flood(struct sim_bus *bus, const struct can_frame *cf,
 	ph->flood_rate = ns;
 	ph->flood_left = count;
 	ph->flood_sent = 0;
+	ph->flood_checked = false;
 	return 0;
+}
+
+int sim_phantom_flood_checked(struct sim_bus *bus, const struct can_frame *cf,
+			      u32 count, u32 bitrate)
+{
+	int ret;
+
+	if (cf->len != 8 || cf->can_id & CAN_RTR_FLAG)
+		return -EINVAL;
+	ret = sim_phantom_flood(bus, cf, count, bitrate);
+	if (!ret)
+		bus->phantom.flood_checked = true;
+	return ret;
 }
 
 /* ---- Arbitration -------------------------------------------------------------- */

@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "sim_helpers.h"
+#include "../vm/guest/flood_count.h"
 
 #define BIT_NS_125K	8000
 #define MS		1000000ULL
@@ -727,6 +728,42 @@ static void test_phantom_node(void **state)
 	assert_int_equal(sim_phantom_pending(&r->bus), 0);
 }
 
+/*
+ * A checked flood is what can-flood counts as lossless and in order: each
+ * frame's check word is the CRC-32 of its id and sequence number.
+ */
+static void test_phantom_checked_flood(void **state)
+{
+	const struct flood f = { .id = 0x123, .start = 5, .count = 40 };
+	struct rig *r = *state;
+	struct sim_chip *chip = &r->chip[0];
+	struct can_frame cf = simh_frame(0x123, 8, (const u8[]){ 5, 0, 0, 0 });
+	struct can_frame got;
+	struct flood_count c;
+
+	cf.len = 7;
+	assert_int_equal(sim_phantom_flood_checked(&r->bus, &cf, 1, 0), -EINVAL);
+	cf.len = 8;
+	assert_int_equal(flood_count_init(&c, &f), 0);
+	assert_int_equal(sim_phantom_flood_checked(&r->bus, &cf, f.count, 125000), 0);
+	while (sim_phantom_pending(&r->bus) || !sim_bus_idle(&r->bus)) {
+		sim_bus_advance_to(&r->bus, sim_bus_next_event(&r->bus));
+		if (simh_read(chip, MCP2510_REG_CANINTF) & MCP2510_INT_RX0) {
+			simh_read_rx(chip, 0, &got, true);
+			flood_count_frame(&c, &f, &got);
+		}
+	}
+	assert_int_equal(c.received, f.count);
+	assert_true(flood_lossless(&c, &f));
+	flood_count_free(&c);
+
+	/* a plain flood after it leaves bytes 4-7 alone again */
+	assert_int_equal(sim_phantom_flood(&r->bus, &cf, 1, 125000), 0);
+	simh_run_idle(&r->bus, 10 * MS);
+	simh_read_rx(chip, 0, &got, true);
+	assert_memory_equal(got.data + 4, cf.data + 4, 4);
+}
+
 /* AN739 "Loopback mode": frames go round inside the chip, not on the bus */
 static void test_loopback(void **state)
 {
@@ -848,6 +885,8 @@ int main(void)
 		cmocka_unit_test_setup_teardown(test_rx_status_rollover, setup_one_2515, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_frame_timing, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_phantom_node, setup_one, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_phantom_checked_flood, setup_one,
+						simh_teardown),
 		cmocka_unit_test_setup_teardown(test_loopback, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_listen_only, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_interrupt_driven_receive, setup_one, simh_teardown),

@@ -48,13 +48,13 @@ struct flood_count {
 	unsigned char *seen;	/* a bit per frame of the flood */
 };
 
-static uint32_t flood_le32(const unsigned char *b)
+static inline uint32_t flood_le32(const unsigned char *b)
 {
 	return b[0] | (uint32_t)b[1] << 8 | (uint32_t)b[2] << 16 |
 	       (uint32_t)b[3] << 24;
 }
 
-static void flood_put_le32(unsigned char *b, uint32_t v)
+static inline void flood_put_le32(unsigned char *b, uint32_t v)
 {
 	int i;
 
@@ -63,7 +63,7 @@ static void flood_put_le32(unsigned char *b, uint32_t v)
 }
 
 /* CRC-32 (reflected, polynomial 0xEDB88320) of @len bytes at @p */
-static uint32_t flood_crc32(const unsigned char *p, size_t len)
+static inline uint32_t flood_crc32(const unsigned char *p, size_t len)
 {
 	uint32_t crc = 0xffffffff;
 	int bit;
@@ -76,7 +76,7 @@ static uint32_t flood_crc32(const unsigned char *p, size_t len)
 	return ~crc;
 }
 
-static uint32_t flood_check_word(const struct flood *f, uint32_t seq)
+static inline uint32_t flood_check_word(const struct flood *f, uint32_t seq)
 {
 	unsigned char b[8];
 
@@ -88,7 +88,7 @@ static uint32_t flood_check_word(const struct flood *f, uint32_t seq)
 }
 
 /* frame @n of flood @f */
-static struct can_frame flood_frame(const struct flood *f, uint32_t n)
+static inline struct can_frame flood_frame(const struct flood *f, uint32_t n)
 {
 	struct can_frame cf = { .can_id = f->id, .len = 8 };
 	uint32_t seq = f->start + n;
@@ -99,21 +99,21 @@ static struct can_frame flood_frame(const struct flood *f, uint32_t n)
 }
 
 /* 0, or -1 without memory for the flood's bitmap */
-static int flood_count_init(struct flood_count *c, const struct flood *f)
+static inline int flood_count_init(struct flood_count *c, const struct flood *f)
 {
 	memset(c, 0, sizeof(*c));
 	c->seen = calloc(f->count / 8 + 1, 1);
 	return c->seen ? 0 : -1;
 }
 
-static void flood_count_free(struct flood_count *c)
+static inline void flood_count_free(struct flood_count *c)
 {
 	free(c->seen);
 	c->seen = NULL;
 }
 
 /* takes one received frame into @c */
-static void flood_count_frame(struct flood_count *c, const struct flood *f,
+static inline void flood_count_frame(struct flood_count *c, const struct flood *f,
 			      const struct can_frame *cf)
 {
 	uint32_t seq, n;
@@ -141,19 +141,19 @@ static void flood_count_frame(struct flood_count *c, const struct flood *f,
 	c->unique++;
 }
 
-static uint32_t flood_lost(const struct flood_count *c, const struct flood *f)
+static inline uint32_t flood_lost(const struct flood_count *c, const struct flood *f)
 {
 	return f->count - c->unique;
 }
 
 /* every frame of the flood came once, in order, intact, and nothing else */
-static int flood_lossless(const struct flood_count *c, const struct flood *f)
+static inline int flood_lossless(const struct flood_count *c, const struct flood *f)
 {
 	return !flood_lost(c, f) && !c->duplicated && !c->reordered &&
 	       !c->corrupted;
 }
 
-static int flood_hex(int ch)
+static inline int flood_hex(int ch)
 {
 	if (ch >= '0' && ch <= '9')
 		return ch - '0';
@@ -171,7 +171,7 @@ static int flood_hex(int ch)
  * the line holds no frame or says "error" (a frame an error destroyed,
  * in the monitor).  Data bytes may be separated by dots.
  */
-static int flood_text_frame(const char *line, struct can_frame *cf)
+static inline int flood_text_frame(const char *line, struct can_frame *cf)
 {
 	const char *p, *hash = strchr(line, '#');
 	int digits = 0, hi, lo;
