@@ -1,0 +1,27 @@
+#!/bin/sh
+# vm-run: --nodes 2 --variant mcp2515 --driver mcp2510 --sim-param time_scale=10 --timeout 500
+# vm-run: --nodes 2 --variant mcp2515 --driver mcp251x --sim-param time_scale=10 --timeout 500
+# vm-kernels: 6.1 6.12
+# The hardware test kit as a board runs it: mcp2510-hwtest, installed as
+# make install-userspace installs it, on can0 and can1 of two simulated
+# chips, with the simulator's debugfs unmounted so that the kit sees
+# nothing a board would not have.  Every check passes or is reported as
+# not run or not offered, the report names the driver bound, and the
+# JSON summary holds the floods.  Floods are short here (KIT_FRAMES);
+# a board runs the full counts.  Bus time runs 10 times slower than real
+# time, so 1 Mbit/s is within what a TCG guest keeps up with.
+set -eu
+. /lib/rig.sh
+
+umount /sys/kernel/debug
+trap 'mount -t debugfs debugfs /sys/kernel/debug' EXIT
+[ ! -e "$SIM" ] || fail "the simulator's debugfs is still visible"
+
+status=0
+KIT_FRAMES=${KIT_FRAMES:-200} mcp2510-hwtest -o /tmp/kit can0 can1 || status=$?
+cat /tmp/kit/summary.json
+[ $status -eq 0 ] || fail "the kit failed (exit status $status)"
+grep -q "^  \"$VM_DRIVER\": {" /tmp/kit/summary.json || fail "the report does not name $VM_DRIVER"
+grep -q '"verdict": "pass"' /tmp/kit/summary.json || fail "the summary's verdict is not pass"
+[ "$(grep -c '^flood ' /tmp/kit/results.txt)" -eq 6 ] || fail "not six floods in the results"
+echo "hwtest-kit: ok"
