@@ -41,12 +41,6 @@ per_frame() {
 # field LINE KEY: KEY's value in a "flood: k=v ..." line.
 field() { echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
 
-spi_snapshot() {
-	for s in messages transfers bytes; do
-		eval "${1}_tx_$s=\$(spi_stat \"\$FROM\" $s) ${1}_rx_$s=\$(spi_stat \"\$TO\" $s)"
-	done
-}
-
 # flood FROM TO BITRATE ID: one flood, one "flood" result line.
 flood() {
 	FROM=$1 TO=$2 rate=$3 id=$4
@@ -57,16 +51,18 @@ flood() {
 	can-flood recv "$TO" "$FRAMES" -i "$id" >"$OUT/recv.txt" 2>&1 &
 	rpid=$!
 	wait_for 10 grep -q ready "$OUT/recv.txt" || true
+	# shellcheck disable=SC2046 # two numbers
 	set -- $(cpu_busy_total)
 	busy0=$1 total0=$2 irq0=$(irqs) t0=$(uptime_cs)
-	spi_snapshot b
+	txm=$(spi_stat "$FROM" messages) txt=$(spi_stat "$FROM" transfers) txb=$(spi_stat "$FROM" bytes)
+	rxm=$(spi_stat "$TO" messages) rxt=$(spi_stat "$TO" transfers) rxb=$(spi_stat "$TO" bytes)
 	over0=$(if_stat "$TO" rx_over_errors) drop0=$(if_stat "$TO" rx_dropped)
 	can-flood send "$FROM" "$FRAMES" -i "$id" >"$OUT/send.txt" 2>&1 || true
 	t1=$(uptime_cs)
 	wait "$rpid" || true
+	# shellcheck disable=SC2046 # two numbers
 	set -- $(cpu_busy_total)
 	busy1=$1 total1=$2 irq1=$(irqs)
-	spi_snapshot a
 	link_down "$FROM" "$TO"
 	rx=$(grep '^flood: mode=recv' "$OUT/recv.txt" || true)
 	tx=$(grep '^flood: mode=send' "$OUT/send.txt" || true)
@@ -87,12 +83,12 @@ flood() {
 		"cpu_busy_pct=$(awk -v b=$((busy1 - busy0)) -v t=$((total1 - total0)) \
 			'BEGIN { printf "%.1f\n", t ? 100 * b / t : 0 }')" \
 		"irqs_per_frame=$(per_frame "$irq1" "$irq0" "$got")" \
-		"tx_spi_messages_per_frame=$(per_frame "$a_tx_messages" "$b_tx_messages" "$FRAMES")" \
-		"tx_spi_transfers_per_frame=$(per_frame "$a_tx_transfers" "$b_tx_transfers" "$FRAMES")" \
-		"tx_spi_bytes_per_frame=$(per_frame "$a_tx_bytes" "$b_tx_bytes" "$FRAMES")" \
-		"rx_spi_messages_per_frame=$(per_frame "$a_rx_messages" "$b_rx_messages" "$got")" \
-		"rx_spi_transfers_per_frame=$(per_frame "$a_rx_transfers" "$b_rx_transfers" "$got")" \
-		"rx_spi_bytes_per_frame=$(per_frame "$a_rx_bytes" "$b_rx_bytes" "$got")" >>"$RESULTS"
+		"tx_spi_messages_per_frame=$(per_frame "$(spi_stat "$FROM" messages)" "$txm" "$FRAMES")" \
+		"tx_spi_transfers_per_frame=$(per_frame "$(spi_stat "$FROM" transfers)" "$txt" "$FRAMES")" \
+		"tx_spi_bytes_per_frame=$(per_frame "$(spi_stat "$FROM" bytes)" "$txb" "$FRAMES")" \
+		"rx_spi_messages_per_frame=$(per_frame "$(spi_stat "$TO" messages)" "$rxm" "$got")" \
+		"rx_spi_transfers_per_frame=$(per_frame "$(spi_stat "$TO" transfers)" "$rxt" "$got")" \
+		"rx_spi_bytes_per_frame=$(per_frame "$(spi_stat "$TO" bytes)" "$rxb" "$got")" >>"$RESULTS"
 	# Loss is a figure (a slow host loses frames at 1 Mbit/s); damage
 	# to what arrives is a failure.
 	damage=$(($(field "$rx" duplicated) + $(field "$rx" reordered) + $(field "$rx" corrupted)))

@@ -54,6 +54,7 @@ system_info() {
 	info bitrates "$BITRATES"
 	describe "$A"
 	describe "$B"
+	# shellcheck disable=SC2034 # for the other parts of the kit
 	DRIVER=$(sed -n "s/^info $A.driver //p" "$RESULTS")
 	CHIP=$(sed -n "s/^info $A.chip //p" "$RESULTS")
 	SPI_A=$(sed -n "s/^info $A.spi_device //p" "$RESULTS")
