@@ -174,7 +174,7 @@ check_busoff() {
 
 # restart-ms 100 against the same fault: can-dev is told of the bus-off
 # and restarts the interface by itself (restart-ms-reported), and once
-# the rates agree the sender is back without a manual restart.
+# the rates agree traffic flows without a manual restart.
 check_restart_ms() {
 	link_up "$A" $RATE restart-ms 100 && link_up "$B" 250000 ||
 		{ record restart-ms fail "cannot bring the pair up"; return; }
@@ -188,10 +188,12 @@ check_restart_ms() {
 	link_up "$B" $RATE
 	dump_start "$B" "$OUT/restart-ms.log"
 	send "$A" "3BE#55"
-	if wait_for 10 is_state "$A" ERROR-ACTIVE && dump_stop && grep -q '3BE#55' "$OUT/restart-ms.log"; then
-		record restart-ms pass "error-active and traffic flows once the rates agree, no manual restart"
+	# The state that follows depends on the error counters the restart
+	# left: a chip that recovered by itself keeps its TEC.
+	dump_stop 2
+	if grep -q '3BE#55' "$OUT/restart-ms.log" && ! is_state "$A" BUS-OFF; then
+		record restart-ms pass "traffic flows once the rates agree, no manual restart (state $(can_state "$A"))"
 	else
-		dump_stop 0
 		record restart-ms fail "state $(can_state "$A") once the rates agree, $(frames "$OUT/restart-ms.log") frames across"
 	fi
 }
