@@ -61,6 +61,7 @@ help:
 	@echo "make deb       Debian packages in build/deb; make deb-check (root)"
 	@echo "make vmtest    scenario suite in QEMU; make dt-check; make bench"
 	@echo "make bench-check  the bench report's counting on canned logs"
+	@echo "make hwtest IFACES=\"can0 can1\"  the test kit on two wired CAN interfaces (root)"
 	@echo "make fresh-root-check  make demo in minimal Debian 12 and 13 roots"
 	@echo "make kernels-news  is there a kernel series newer than the ones tested?"
 	@echo "make clean     remove build products, keep downloads, kernels and roots"
@@ -114,6 +115,7 @@ include tests/build/build.mk
 include tests/vm-arm64/vm-arm64.mk
 include tests/kmod/kmod.mk
 include tests/vm/vm.mk
+include tests/hw/hw.mk
 include tests/soak/soak.mk
 include dts/dts.mk
 include tests/fuzz/fuzz.mk

@@ -64,6 +64,10 @@ static unsigned int seed = SIM_DEFAULT_SEED;
 module_param(seed, uint, 0444);
 MODULE_PARM_DESC(seed, "power-up garbage in the chips' buffers, filters and masks: chip n uses seed + n (default fixed)");
 
+static unsigned int rx_corrupt_every;
+module_param(rx_corrupt_every, uint, 0444);
+MODULE_PARM_DESC(rx_corrupt_every, "a broken receive path for tests: flip a bit of every Nth received frame (default 0: never)");
+
 struct chip_variant {
 	const char *name;
 	enum sim_variant model;
@@ -145,6 +149,7 @@ static int build_bus(struct mcp2510_sim *sim, const struct chip_variant *v)
 			pr_err("osc_hz=%u: rejected by the model\n", osc_hz);
 			return ret;
 		}
+		sim_chip_faults(&chip->model)->rx_corrupt_every = rx_corrupt_every;
 		ret = sim_bus_attach(&sim->bus, &chip->model);
 		if (ret)
 			return ret;

@@ -181,6 +181,13 @@ struct sim_chip_faults {
 	 * leaves them as they were.
 	 */
 	bool reset_keeps_unknown;
+	/*
+	 * A broken receive path, for proving that a test notices one: every
+	 * Nth frame the chip takes into a receive buffer has the lowest bit
+	 * of its last data byte flipped (0: never).  rx_taken counts them.
+	 */
+	u32 rx_corrupt_every;
+	u32 rx_taken;
 };
 
 /*

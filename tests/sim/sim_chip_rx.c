@@ -165,6 +165,15 @@ static void sim_chip_take(struct sim_chip *chip, const struct can_frame *cf,
 
 void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf)
 {
+	struct sim_chip_faults *f = &chip->faults;
+	struct can_frame bad;
+
+	if (f->rx_corrupt_every && ++f->rx_taken % f->rx_corrupt_every == 0 &&
+	    cf->len) {
+		bad = *cf;
+		bad.data[bad.len - 1] ^= 0x01;
+		cf = &bad;
+	}
 	sim_chip_take(chip, cf, true);
 }
 

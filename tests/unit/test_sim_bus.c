@@ -867,6 +867,31 @@ static void test_interrupt_driven_receive(void **state)
 	assert_true(sim_chip_pin(chip, SIM_PIN_INT));
 }
 
+/*
+ * rx_corrupt_every, the broken receive path tests use to prove that they
+ * notice damage: every third frame taken has its last data bit flipped,
+ * the others arrive as sent.
+ */
+static void test_rx_corrupt_every(void **state)
+{
+	struct rig *r = *state;
+	u8 data[2] = { 0x12, 0x34 };
+	unsigned int n;
+
+	sim_chip_faults(&r->chip[1])->rx_corrupt_every = 3;
+	for (n = 1; n <= 6; n++) {
+		struct can_frame cf = simh_frame(0x100 + n, 2, data), got;
+
+		simh_send(&r->chip[0], 0, &cf);
+		simh_run_idle(&r->bus, 10 * MS);
+		simh_bit_modify(&r->chip[0], MCP2510_REG_CANINTF, MCP2510_INT_TX_ALL, 0);
+		simh_read_rx(&r->chip[1], 0, &got, true);
+		assert_int_equal(got.can_id, cf.can_id);
+		assert_int_equal(got.data[0], 0x12);
+		assert_int_equal(got.data[1], n % 3 ? 0x34 : 0x35);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -889,6 +914,7 @@ int main(void)
 						simh_teardown),
 		cmocka_unit_test_setup_teardown(test_loopback, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_listen_only, setup_two, simh_teardown),
+		cmocka_unit_test_setup_teardown(test_rx_corrupt_every, setup_two, simh_teardown),
 		cmocka_unit_test_setup_teardown(test_interrupt_driven_receive, setup_one, simh_teardown),
 	};
 
