@@ -10,6 +10,7 @@
 
 #include <linux/can/dev.h>
 #include <linux/can/rx-offload.h>
+#include <linux/workqueue.h>
 
 /*
  * From 6.18 can-dev gives a classical CAN interface an MTU range of
@@ -35,6 +36,14 @@ can_rx_offload_get_echo_skb_queue_tail(struct can_rx_offload *offload,
 {
 	return can_rx_offload_get_echo_skb(offload, idx, 0, frame_len_ptr);
 }
+#endif
+
+/*
+ * system_wq was renamed system_percpu_wq (a per-CPU queue, as before); 7.x
+ * marks the old name deprecated and warns at its first use.
+ */
+#ifndef MCP2510_HAVE_SYSTEM_PERCPU_WQ
+#define system_percpu_wq	system_wq
 #endif
 
 #endif /* MCP2510_COMPAT_H */

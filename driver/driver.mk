@@ -8,7 +8,7 @@
 #                             build/modules/<release>/
 #   make modules-rig          the same for each kernel of the QEMU rig that is
 #                             there (tests/vm/kernel-info), into
-#                             build/modules/<6.1|6.12|debug|rt>/
+#                             build/modules/<6.1|6.12|debug|rt|7.3>/
 #   make modules-check        warning-free builds against Debian's 6.1 and 6.12
 #                             headers (the rig's, unpacked under build/kernels
 #                             by tests/vm/fetch-kernel) with W=1 and sparse
@@ -95,24 +95,19 @@ modules:
 	@$(call need_kdir,modules)
 	$(call kbuild_modules,$(KDIR),$(call kernel_release,$(KDIR)))
 
-# $(call kernel_cc,KDIR): the gcc-<N> a Debian kernel build tree names in
-# its .kernelvariables (gcc-12 for bookworm's 6.1), empty when it names none.
-kernel_cc = sed -n 's/^CC = .*\(gcc-[0-9][0-9]*\)$$/\1/p' $(1)/.kernelvariables 2>/dev/null || true
-
 # The rig's kernels (tests/vm/vm.mk's VM_KERNELS when set).  A rig kernel
-# may come from another Debian release than the host's (6.1 from Debian 12
-# on a Debian 13 host): its headers ask for that release's compiler, which
-# is installed when missing (Debian 13 has gcc-12 too), so the modules are
-# built with the compiler the kernel was built with.
+# may come from another Debian release than the host's: tests/vm/kbuild
+# builds with the compiler its headers name (installed when missing: 6.1's
+# gcc-12 on a Debian 13 host), and in the Debian 13 root when the host's C
+# library is too old for its kbuild programs (7.3 on a Debian 12 host).
 RIG_KERNELS = $(or $(VM_KERNELS),6.1 6.12 rt debug)
 modules-rig: modules-deps
 	@set -e; for k in $(RIG_KERNELS); do \
 		kdir=$$($(TOP)/tests/vm/kernel-info $$k kdir 2>/dev/null) || { \
 			echo "modules-rig: rig kernel $$k not there yet, not built"; \
 			continue; }; \
-		cc=$$($(call kernel_cc,$$kdir)); \
-		[ -z "$$cc" ] || command -v $$cc >/dev/null || $(ENSURE) $$cc; \
-		$(MAKE) --no-print-directory modules-rig-one KDIR=$$kdir RIG_KERNEL=$$k; \
+		$(TOP)/tests/vm/kbuild $$k $(MAKE) --no-print-directory -C $(TOP) \
+			modules-rig-one KDIR=$$kdir RIG_KERNEL=$$k; \
 	done
 
 .PHONY: modules-rig-one

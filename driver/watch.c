@@ -149,7 +149,7 @@ static void mcp2510_watch_work(struct work_struct *work)
 	mcp2510_unlock(priv);
 	mcp2510_tx_retry(priv);
 
-	queue_delayed_work(system_wq, &w->work, delay);
+	queue_delayed_work(system_percpu_wq, &w->work, delay);
 }
 
 /*
@@ -181,7 +181,7 @@ void mcp2510_watch_storm(struct mcp2510_priv *priv)
 				    "interrupt storm on INT: polling the chip instead\n");
 	}
 	w->poll_until = jiffies + msecs_to_jiffies(w->backoff_ms);
-	mod_delayed_work(system_wq, &w->work, 0);
+	mod_delayed_work(system_percpu_wq, &w->work, 0);
 }
 
 void mcp2510_watch_init(struct mcp2510_priv *priv)
@@ -199,7 +199,8 @@ void mcp2510_watch_start(struct mcp2510_priv *priv)
 	w->storming = false;
 	w->recovering = false;
 	mcp2510_unlock(priv);
-	queue_delayed_work(system_wq, &w->work, mcp2510_watch_delay(priv));
+	queue_delayed_work(system_percpu_wq, &w->work,
+			   mcp2510_watch_delay(priv));
 }
 
 /* Before free_irq(): leaves the line enabled, as request_irq() found it. */

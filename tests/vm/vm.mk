@@ -6,8 +6,9 @@
 #        vm-kernel-7.3       one of them (the Debian ones: tests/vm/kernels)
 #   make initramfs           base initramfs for each kernel in VM_KERNELS
 #   make vmtest              the suite on every kernel in VM_KERNELS (default
-#                            6.1, 6.12, rt and debug): what make check runs
-#   make vmtest-release      the same on Debian's kernels (6.1, 6.12, rt)
+#                            6.1, 6.12, rt, debug and the newest series,
+#                            KERNEL_NEWEST: 7.3): what make check runs
+#   make vmtest-release      the same on Debian's kernels (6.1, 6.12, rt, 7.3)
 #   make vmtest-debug        the suite on the debug kernel alone, built if
 #                            missing
 #   make vmtest-one SCENARIO=tests/vm/scenarios/x.sh KERNEL=6.12
@@ -24,7 +25,7 @@ VM_DIR := $(TOP)/tests/vm
 CLEAN_KEEP += kernels vm/busybox
 # The debug kernel last: make check builds it in the background, and the
 # Debian kernels are fetched while that build ends.
-VM_KERNELS ?= 6.1 6.12 rt debug
+VM_KERNELS ?= 6.1 6.12 rt $(KERNEL_NEWEST) debug
 VMTEST_DEPS +=
 export VM_KERNELS
 
@@ -45,8 +46,10 @@ $(VM_GUEST_BIN)/%: $(VM_DIR)/guest/%.c $(wildcard $(VM_DIR)/guest/*.h) | cc-deps
 	@mkdir -p $(@D)
 	$(call quiet,CC,$<)$(CC) $(CSTD) $(WARN) -O2 -o $@ $<
 
-# The Debian kernels fetch-kernel unpacks (with their headers).
-VM_DEBIAN_KERNELS := $(shell awk '!/^\#/ { print $$1 }' $(VM_DIR)/kernels)
+# The Debian kernels fetch-kernel unpacks (with their headers): those of
+# tests/vm/kernels, the newest series put in as kernel-list does.
+VM_DEBIAN_KERNELS := $(subst @NEWEST@,$(KERNEL_NEWEST),\
+	$(shell awk '!/^\#/ { print $$1 }' $(VM_DIR)/kernels))
 
 .PHONY: vm-kernels $(addprefix vm-kernel-,$(VM_DEBIAN_KERNELS)) vm-kernel-debug initramfs \
 	vm-kernel-debug-background vmtest vmtest-release vmtest-debug vmtest-one \
@@ -68,7 +71,7 @@ vmtest: $(addprefix vm-kernel-,$(VM_KERNELS))
 	@$(VM_DIR)/vmtest -k "$(VM_KERNELS)"
 
 vmtest-one:
-	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|debug|rt]"; exit 2; }
+	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|7.3|debug|rt]"; exit 2; }
 	@$(MAKE) --no-print-directory vm-kernel-$(or $(KERNEL),6.1)
 	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS=$(or $(KERNEL),6.1))
 	@VM_SELFTEST=0 VM_EVERY_SCENARIO=1 $(VM_DIR)/vmtest -k "$(or $(KERNEL),6.1)" $(abspath $(SCENARIO))
@@ -76,7 +79,7 @@ vmtest-one:
 vm-info:
 	@for k in $(VM_DEBIAN_KERNELS) debug; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
 vmtest-release:
-	@$(MAKE) --no-print-directory vmtest VM_KERNELS="6.1 6.12 rt"
+	@$(MAKE) --no-print-directory vmtest VM_KERNELS="6.1 6.12 rt $(KERNEL_NEWEST)"
 
 vmtest-debug:
 	@$(MAKE) --no-print-directory vmtest VM_KERNELS=debug

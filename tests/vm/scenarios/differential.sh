@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp2510
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.12
 # This project's driver against mainline mcp251x, on what a user sees of
 # both.  The same steps run twice on new chips, once bound to each driver
 # (the one vm-run loaded first, then the other), and each run writes what

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # Byte queue limits on the transmit path.  Every frame the driver takes
 # is reported to BQL and must be reported done exactly once however it
 # ends, or the stack's count of bytes in flight (byte_queue_limits/

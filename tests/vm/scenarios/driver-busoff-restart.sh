@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --sim-param time_scale=50
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # Bus-off with restart-ms under TX load, and restarts that fail.
 #  - With restart-ms the chip must stay off the bus until can-dev's restart
 #    work runs: left alone it would recover by itself after 128 x 11

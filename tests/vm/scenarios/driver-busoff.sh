@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=50
 # vm-run: --nodes 2 --variant mcp2515 --sim-param time_scale=50
-# vm-kernels: 6.1 6.12 rt debug
+# vm-kernels: rt debug
 # Error states and bus-off in mcp2510.ko, with berr-reporting on.  can0
 # sends a frame nobody acknowledges: each ACK error costs it 8 in TEC until
 # it is error-passive, where an unacknowledged transmitter stays.  Then the

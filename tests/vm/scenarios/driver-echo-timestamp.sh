@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --sim-param int_trigger=edge-falling
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.12 debug
 # Timestamps on a sending interface: can0 and can1 send to each other at
 # once, and candump on can0 sees can0's own frames (their echoes) among
 # the frames from can1.  The stamps never decrease in the order candump

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --sim-param int_trigger=edge-falling
-# vm-kernels: 6.1 6.12 rt debug
+# vm-kernels: rt debug
 # An edge-triggered INT, as a firmware may describe it: the driver takes
 # the trigger type the firmware gives, and a lost edge (INT already low,
 # so no further edge will come) stalls nothing.  One lost edge on a quiet

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=100
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # Error confinement of mcp2510.ko on a real-looking bus fault rather than
 # an injected one.  A bit-rate mismatch (can0 at 500 kbit/s, can1 at
 # 250 kbit/s): can1 destroys every frame of can0, which climbs through

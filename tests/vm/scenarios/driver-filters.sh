@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # The hardware acceptance filters set through sysfs decide what can1
 # receives: RXB0 takes standard 0x120-0x12f; RXB1, with a standard mask,
 # takes standard 0x7e0 and the extended frames whose top 11 bits are those

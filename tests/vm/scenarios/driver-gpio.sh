@@ -1,6 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --sim-param gpio_controller=1
-# vm-kernels: 6.1 6.12 rt debug
+# vm-kernels: 6.12 rt debug
+# vm-config: GPIO_CDEV_V1
 # The chip's spare pins as a gpiochip when the firmware marks the device
 # gpio-controller: gpioinfo shows the driver's five lines with their fixed
 # directions, gpioset drives RX0BF/RX1BF (the simulated pins follow, and

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2
-# vm-kernels: 6.1 6.12 rt debug
+# vm-kernels: rt debug
 # A hostile chip, as a broken board or a flaky supply makes one:
 #  - INT stuck low for a few seconds: the driver stops taking the line and
 #    polls the chip instead; the guest stays responsive, the interrupt

@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
 # vm-run: --nodes 2 --variant mcp2515
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.1
 # Classical CAN frames with a raw DLC of 9..15 (ip link ... cc-len8-dlc).
 # Both chips send a DLC above 8 as written, with eight data bytes, and
 # store a received one as it came.  With the mode on, a sent frame's

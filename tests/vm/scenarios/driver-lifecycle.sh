@@ -1,5 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
+# vm-kernels: rt debug
 # mcp2510.ko brought up and down again and again, and unloaded under load:
 # 100 x ifup/ifdown of can0 (20 on the RT kernel, 10 on the debug kernel),
 # each time with a frame that reaches can1;

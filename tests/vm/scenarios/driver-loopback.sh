@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp2510
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp251x
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # The echo of a sent frame and the sockets' choices about it.  A raw
 # socket with CAN_RAW_LOOPBACK=0 wants its frames on the bus only: no
 # other local socket may see them.  With loopback on, the other sockets

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=50
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.12
 # mcp2510.ko's operating modes and what ethtool and ip show of them:
 # - bit rates from 10 kbit/s to 1 Mbit/s: ip -details shows the bit timing
 #   and sample point the project's own calculator (mcp2510ctl bittiming)

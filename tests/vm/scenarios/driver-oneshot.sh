@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # One-shot mode on the MCP2515 (OSM in CANCTRL): a frame nobody
 # acknowledges is tried once, counted as aborted and dropped, and the
 # queue behind it moves on; an acknowledged frame goes through as usual.

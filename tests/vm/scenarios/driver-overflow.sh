@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
 # vm-run: --nodes 2 --variant mcp2515
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # A flood from the simulator's phantom node, at full speed, overruns the
 # two receive buffers of can1 (under TCG the guest is far slower than the
 # bus): the overflow is counted (rx_over_errors, rx_errors) and reported as

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.12
 # The hardware-filter files in /sys/class/net/can0/mcp2510/ are readable by
 # anyone and writable only with CAP_NET_ADMIN.  Root's shell with every
 # capability but CAP_NET_ADMIN (util-linux setpriv shrinks the bounding

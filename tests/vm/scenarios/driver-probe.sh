@@ -2,7 +2,7 @@
 # vm-run: --nodes 2 --variant mcp2510
 # vm-run: --nodes 2 --variant mcp2515
 # vm-run: --nodes 2 --variant mcp25625
-# vm-kernels: 6.1 6.12 rt debug
+# vm-kernels: rt debug
 # What mcp2510.ko shows once it has probed two simulated chips: the
 # binding and module aliases, the CAN core's view (bit-timing limits,
 # supported control modes: one-shot only on the MCP2515 and MCP25625), ethtool (identity, register dump: the chip
@@ -46,6 +46,17 @@ else
 	ip link set can0 type can bitrate 125000 one-shot on || fail "refused one-shot"
 	ip link set can0 type can one-shot off
 fi
+
+# The MTU is classical CAN's, down or up: can_change_mtu() refuses CAN FD's
+# where it exists, can-dev's MTU range (6.18 on) everything else.
+mtu() { cat /sys/class/net/can0/mtu; }
+for state in down up; do
+	[ "$state" = down ] || ip link set can0 up type can bitrate 125000
+	! ip link set can0 mtu 72 2>/dev/null || fail "MTU 72 accepted while $state"
+	ip link set can0 mtu 16 || fail "MTU 16 refused while $state"
+	[ "$(mtu)" -eq 16 ] || fail "MTU $(mtu) while $state"
+done
+ip link set can0 down
 
 # ethtool: identity and the 128-byte register dump.
 ethtool -i can0 | tee /tmp/drvinfo

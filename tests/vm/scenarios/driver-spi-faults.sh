@@ -1,5 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515
+# vm-kernels: rt debug
 # SPI faults under mcp2510.ko, from the simulator's per-chip fault files:
 # failed SPI messages (spi_errors) and corrupted MISO (spi_corrupt) while
 # the interface opens, while a frame is loaded, while an interrupt is

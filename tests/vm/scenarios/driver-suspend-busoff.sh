@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=100
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # A bus-off that the driver is still handling when the system suspends.
 # Every SPI message is made slow (spi_msg_ns), and the system suspends as
 # soon as the IRQ thread has begun to stop the chip at the bus-off

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param osc_clk=1
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # The oscillator does not come back at a resume: its clock fails to
 # prepare once (osc_errors 1).  The resume says so and leaves can0 up but
 # off the bus, and down and up must power the chip again: the clock is

@@ -1,5 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
+# vm-kernels: rt debug
 # System sleep with the interfaces up.  The rig has no firmware to sleep
 # in, so the kernel's PM test mode runs the whole device suspend and
 # resume path and skips only the platform's sleep itself

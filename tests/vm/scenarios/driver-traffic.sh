@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
 # vm-run: --nodes 2 --variant mcp2515
-# vm-kernels: 6.1 6.12 rt debug
+# vm-kernels: 6.12 rt debug
 # mcp2510.ko on two simulated chips sharing one bus, at 125 kbit/s,
 # 500 kbit/s and 1 Mbit/s: single frames (standard, extended, remote,
 # empty) both ways with their content checked, a burst at full speed both

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # An RTS whose transfer fails although it reached the chip, and the READ
 # STATUS after it fails too (spi_errors_rts 2): the driver cannot tell
 # whether that frame is pending.  It gives the frame up (tx_dropped) and

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: debug
 # The transmit queue across restarts and system sleep, with the stack
 # holding frames for can0.
 # - Bus-off with restart-ms while a sender keeps the queue full: each

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --sim-param wakeup_source=1 --sim-param wakeup_filter=1
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.1
 # Wake-on-CAN in a real suspend-to-idle.  The chips' software node says
 # wakeup-source (and microchip,wakeup-filter: CNF3.WAKFIL).  The
 # simulator's phantom sends a frame a second after the suspend reached

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp2510
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.1
 # Bit timing on the strict chip model (tests/sim/README.md, "Invalid bit
 # timing"), this project's driver and then mainline mcp251x on new chips:
 # at the usual rates from 16 MHz both program timing the data sheets allow

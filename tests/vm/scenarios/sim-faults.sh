@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.1
 # The simulator's bus faults and its phantom node, judged through mainline
 # mcp251x (a driver this project did not write) and the CAN rules every
 # controller follows: injected bus errors cost the transmitter 8 and each

@@ -2,7 +2,8 @@
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp251x
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x --sim-param time_scale=8
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.12
+# vm-config: GPIO_CDEV_V1
 # Mainline mcp251x, a driver this project did not write, on two simulated
 # chips: it probes, brings both up at 125 kbit/s and moves frames both ways,
 # which checks the chip model and the simulated SPI controller against an

@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --sim-param time_scale=200
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.1
 # SPI time (docs/simulator.md): off by default, when the driver's SPI
 # messages cost no bus time; on, each costs at least its host overhead on
 # the one SPI controller, and chipN/counters say how much (spi_busy_ns).

@@ -1,7 +1,8 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp251x
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.12
+# vm-config: GPIO_CDEV_V1
 # The simulator unloaded and loaded again with spidev_node=1: chip 0 stays a
 # CAN interface, chip 1 becomes /dev/spidevB.1.  Through spidev writes alone
 # the chip is reset, set to loopback and made to receive its own frame, and

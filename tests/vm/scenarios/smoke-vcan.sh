@@ -1,6 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 0
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.1
 # Proves the rig without the simulated chip: the promised tools are there,
 # and frames go cangen/cansend -> vcan0 -> candump through the real
 # can-utils, with counts, payloads and interface statistics checked.

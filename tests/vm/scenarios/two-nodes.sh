@@ -2,7 +2,7 @@
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp2510
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp2510
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp251x
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.1
 # Two simulated chips on one bus: the interfaces appear down, come up with
 # "ip link ... bitrate" (link state UP, no NO-CARRIER), and frames (standard, extended, RTR, all lengths)
 # cross the bus both ways, seen by candump and counted in the statistics.

@@ -1,6 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp2510
 # vm-kernels: 6.1
+# vm-config: GPIO_CDEV_V1
 # mcp2510d as a service: chip 0 is handed to spidev and bridged by mcp2510d
 # to vcan0, chip 1 is can1, driven by mcp2510.ko, on the same simulated
 # bus.  Frames go both ways through cangen and candump; the bus destroys 32

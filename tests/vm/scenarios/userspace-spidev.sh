@@ -1,7 +1,8 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp2510
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp2510
-# vm-kernels: 6.1 6.12 debug
+# vm-kernels: 6.12
+# vm-config: GPIO_CDEV_V1
 # The userspace port against the kernel driver on one bus: chip 0 is can0,
 # driven by mcp2510.ko; chip 1 is handed to spidev, and mcp2510ctl drives it
 # through /dev/spidevB.C with its INT line taken through libgpiod.  Frames
