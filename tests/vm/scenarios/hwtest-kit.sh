@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp2510 --sim-param time_scale=10 --timeout 500
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x --sim-param time_scale=10 --timeout 500
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.1
 # The hardware test kit as a board runs it: mcp2510-hwtest, installed as
 # make install-userspace installs it, on can0 and can1 of two simulated
 # chips, with the simulator's debugfs unmounted so that the kit sees
@@ -12,8 +12,8 @@
 # nothing is reported or restarted (docs/differences-from-mcp251x.md).
 # It may fail a flood too, by reordering alone: it takes RXB0 before RXB1
 # without asking which holds the older frame, which a frame arriving in
-# RXB0 while RXB1 waits turns around; how often depends on timing.  Floods are short here (KIT_FRAMES);
-# a board runs the full counts.  Bus time runs 10 times slower than real
+# RXB0 while RXB1 waits turns around; how often depends on timing.
+# Floods are short here (KIT_FRAMES); a board runs the full counts.  Bus time runs 10 times slower than real
 # time, so 1 Mbit/s is within what a TCG guest keeps up with.
 set -eu
 . /lib/rig.sh

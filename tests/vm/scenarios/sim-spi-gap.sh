@@ -1,7 +1,7 @@
 #!/bin/sh
 # vm-run: --nodes 1 --variant mcp2510 --sim-param time_scale=200 --timeout 600
 # vm-run: --nodes 1 --variant mcp2515 --sim-param time_scale=200 --timeout 600
-# vm-kernels: 6.1 6.12
+# vm-kernels: 6.1
 # SPI messages are not atomic (docs/simulator.md, "SPI"): with the pi
 # board profile at twice its costs, bus time runs on between the
 # chip-select periods of one message, so phantom frames land between the
