@@ -152,7 +152,6 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 	priv->halted = false;
 	priv->halt_requested = false;
 	priv->hw_running = false;
-	mcp2510_tx_forget(priv);
 	mcp2510_unlock(priv);
 
 	mcp2510_rx_disable(priv);

@@ -78,10 +78,11 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
  * The echo of the frame sent from @slot, behind everything read before
  * its completion; can-dev drops it instead when the sender wanted no
  * loopback.  Returns the frame's data length for tx_bytes, which the
- * helper does not when it drops the echo.
+ * helper does not when it drops the echo, and sets @frame_len to the
+ * length on the wire the echo skb carried for BQL.
  */
 unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
-				   unsigned int slot)
+				   unsigned int slot, unsigned int *frame_len)
 {
 	struct sk_buff *skb = priv->can.echo_skb[slot];
 	unsigned int len;
@@ -91,7 +92,7 @@ unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 		return 0;
 	len = can_skb_get_data_len(skb);
 	skb->tstamp = mcp2510_rx_stamp_event(priv);
-	can_rx_offload_get_echo_skb_queue_tail(&priv->offload, slot, NULL);
+	can_rx_offload_get_echo_skb_queue_tail(&priv->offload, slot, frame_len);
 	return len;
 }
 

@@ -17,10 +17,12 @@ void mcp2510_lock(struct mcp2510_priv *priv)
 
 /*
  * What was queued for the stack under the lock goes to NAPI before the
- * next holder can queue more: the stack sees the chip's order.
+ * next holder can queue more: the stack sees the chip's order.  The
+ * frames sent meanwhile are reported to BQL as one completion.
  */
 void mcp2510_unlock(struct mcp2510_priv *priv)
 {
+	mcp2510_tx_report_done(priv);
 	mcp2510_rx_flush(priv);
 	mutex_unlock(&priv->lock);
 }
