@@ -50,6 +50,8 @@ struct mcp2510_watch {
 	unsigned long irq_back_at;	/* jiffies: INT enabled again */
 	unsigned long empty_since;	/* jiffies: start of the counting */
 	unsigned int empty_irqs;	/* calls that found nothing or failed */
+	atomic_t irqs_fired;		/* hard IRQs, ever */
+	int irqs_seen;			/* irqs_fired when the thread last ran */
 	/* ethtool -S */
 	u64 irq_storms;
 	u64 missed_irqs;		/* work found by polling an edge line */
