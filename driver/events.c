@@ -59,6 +59,9 @@ static void mcp2510_event_state(void *ctx, enum can_state state,
 	struct mcp2510_priv *priv = ctx;
 	enum can_state tx_state, rx_state;
 
+	/* A chip back from bus-off by itself has nothing left to halt. */
+	if (state != CAN_STATE_BUS_OFF)
+		priv->halt_requested = false;
 	if (state == priv->can.state)
 		return;
 

@@ -162,13 +162,23 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 /*
  * Bus-off: keep the chip off the bus until can-dev restarts it, by hand or
  * after restart-ms.  The interface becomes bus-off only once the chip is
- * stopped and its frames aborted: a restart must find a quiet device.
+ * stopped and its frames aborted: a restart must find a quiet device.  A
+ * halt the SPI did not let through stays requested, and the next pass of
+ * the IRQ thread or of the watch tries again; meanwhile the frames stay
+ * in flight, as the chip may still send them.
  */
 void mcp2510_halt_locked(struct mcp2510_priv *priv)
 {
+	int ret;
+
 	lockdep_assert_held(&priv->lock);
+	ret = mcp2510_halt(&priv->chip);
+	if (ret) {
+		netdev_warn_once(priv->ndev, "cannot halt the chip at bus-off: %pe\n",
+				 ERR_PTR(ret));
+		return;
+	}
 	priv->halt_requested = false;
-	mcp2510_stop(&priv->chip);
 	priv->halted = true;
 	/* Bus-off is the controller's as a whole: no direction to blame. */
 	can_change_state(priv->ndev, NULL, CAN_STATE_BUS_OFF, CAN_STATE_BUS_OFF);

@@ -300,6 +300,12 @@ int mcp2510_start(struct mcp2510_chip *chip, const struct can_bittiming *bt,
 /* Abort pending frames (tx_aborted for each), mask interrupts, sleep. */
 int mcp2510_stop(struct mcp2510_chip *chip);
 /*
+ * mcp2510_stop() at bus-off, where the chip would recover and send its
+ * frames: when ABAT cannot be set, nothing is given up or changed and the
+ * error is returned, for the caller to try again.
+ */
+int mcp2510_halt(struct mcp2510_chip *chip);
+/*
  * Bus-off recovery or a manual restart: drop queued frames (tx_aborted),
  * reset the chip (clearing TEC/REC), program what mcp2510_start() was
  * given and enter the operating mode; a state event reports error-active.
