@@ -247,8 +247,6 @@ int mcp2510_reg_write(struct mcp2510_chip *chip, u8 addr, const u8 *buf,
 int mcp2510_reg_modify(struct mcp2510_chip *chip, u8 addr, u8 mask, u8 val);
 int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status);
 int mcp2510_rts(struct mcp2510_chip *chip, u8 slots);
-/* MCP2515/MCP25625 only (-EOPNOTSUPP on an MCP2510). */
-int mcp2510_rx_status(struct mcp2510_chip *chip, u8 *status);
 
 /* ---- bring-up and modes ---- */
 /* RESET, start-up wait, check the chip answers: -ENODEV when it does not. */
@@ -256,7 +254,6 @@ int mcp2510_hw_reset(struct mcp2510_chip *chip);
 /* Request MCP2510_MODE_*, poll CANSTAT.OPMOD: -ETIMEDOUT if it never comes. */
 int mcp2510_set_mode(struct mcp2510_chip *chip, u8 mode);
 int mcp2510_sleep(struct mcp2510_chip *chip);
-int mcp2510_wake(struct mcp2510_chip *chip);
 /*
  * Wake-on-CAN.  mcp2510_wake_filter_set() chooses whether the next start
  * sets CNF3.WAKFIL (glitches on RXCAN do not wake the chip).  After

@@ -51,7 +51,6 @@ enum op {
 	OP_IRQ_AGAIN,		/* weight: the interrupt loop is the main job */
 	OP_TX_SUBMIT,
 	OP_SLEEP,
-	OP_WAKE,
 	OP_BERR_COUNTER,
 	OP_REGS_DUMP,
 	OP_PIN_BF,
@@ -426,9 +425,6 @@ static void run_op(struct hostile *h)
 		return;
 	case OP_SLEEP:
 		CHECK_RESULT(mcp2510_sleep(&h->chip), 0, -ETIMEDOUT, -EIO);
-		return;
-	case OP_WAKE:
-		CHECK_RESULT(mcp2510_wake(&h->chip), 0, -ETIMEDOUT, -EIO);
 		return;
 	case OP_BERR_COUNTER:
 		CHECK_RESULT(mcp2510_berr_counter(&h->chip, &bec), 0, -EIO);

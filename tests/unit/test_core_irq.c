@@ -483,22 +483,6 @@ static void test_rx_order_exact_mcp2515(void **state)
 	rx_order(MCP2510_MODEL_MCP2515, 54321);
 }
 
-static void test_mcp2515_rx_status(void **state)
-{
-	struct ch_rig *rig = rx_rig(MCP2510_MODEL_MCP2515, true);
-	struct ch_node *node = &rig->node[0];
-	u8 status = 0;
-
-	(void)state;
-	arrive_unserviced(rig, 0x600, 1);
-	assert_int_equal(mcp2510_rx_status(&node->core, &status), 0);
-	assert_int_equal(status & MCP2515_RXSTATUS_RXB_MASK,
-			 MCP2515_RXSTATUS_RXB0);
-	assert_int_equal(FIELD_GET(MCP2515_RXSTATUS_TYPE_MASK, status),
-			 MCP2515_RXSTATUS_TYPE_STD);
-	ch_rig_free(rig);
-}
-
 /*
  * Receive timestamps (rx_pass): what the pass that takes the next frames
  * says of the first of them.  The first pass after start follows the
@@ -698,7 +682,6 @@ int main(void)
 		cmocka_unit_test(test_transport_error_neither_loses_nor_duplicates),
 		cmocka_unit_test(test_rx_order_exact_mcp2510),
 		cmocka_unit_test(test_rx_order_exact_mcp2515),
-		cmocka_unit_test(test_mcp2515_rx_status),
 		cmocka_unit_test(test_rx_stamp_frames_alone),
 		cmocka_unit_test(test_rx_stamp_order_unknown),
 		cmocka_unit_test(test_rx_stamp_not_with_tx),
