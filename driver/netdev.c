@@ -134,17 +134,21 @@ out_disable_rx:
 	return ret;
 }
 
-/* Does nothing when hw_up failed, e.g. on resume: the interface may be up. */
+/*
+ * Also after a failed hw_up (on resume: the interface stays up), when
+ * only the TX work may still hold frames start_xmit queued meanwhile.
+ */
 void mcp2510_hw_down(struct mcp2510_priv *priv)
 {
-	if (!priv->hw_running)
-		return;
-
 	/* No more interrupts or loads: the chip is ours alone from here. */
-	mcp2510_watch_stop(priv);
-	free_irq(priv->spi->irq, priv);
+	if (priv->hw_running) {
+		mcp2510_watch_stop(priv);
+		free_irq(priv->spi->irq, priv);
+	}
 	cancel_work_sync(&priv->tx_work);
 	mcp2510_tx_flush(priv);
+	if (!priv->hw_running)
+		return;
 
 	mcp2510_lock(priv);
 	if (!priv->halted)
