@@ -85,6 +85,7 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data)
 	if (priv->halt_requested)
 		mcp2510_halt_locked(priv);
 	storm = mcp2510_irq_storm(priv, handled);
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 
 	/* Handled by disabling the line: not for the spurious detector. */

@@ -134,7 +134,7 @@ int mcp2510_rx_init(struct mcp2510_priv *priv);
 void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb);
 unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 				   unsigned int slot, unsigned int *frame_len);
-void mcp2510_rx_flush(struct mcp2510_priv *priv);
+void mcp2510_rx_deliver(struct mcp2510_priv *priv);
 void mcp2510_rx_stamp_irq(struct mcp2510_priv *priv);
 void mcp2510_rx_pass(struct mcp2510_priv *priv, bool first_waited);
 ktime_t mcp2510_rx_stamp_frame(struct mcp2510_priv *priv);

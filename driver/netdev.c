@@ -119,6 +119,7 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 		mcp2510_stop(&priv->chip);
 	else
 		priv->hw_running = true;
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 	if (ret)
 		goto out_free_irq;
@@ -156,6 +157,7 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 	priv->halted = false;
 	priv->halt_requested = false;
 	priv->hw_running = false;
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 
 	mcp2510_rx_disable(priv);

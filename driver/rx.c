@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * Receive path, on can-dev's rx-offload in manual mode.  Whoever holds the
- * chip lock (the IRQ thread, the watch polling the chip, the TX work)
- * queues received frames, error frames and the echoes of sent frames, and
- * releasing the lock hands the batch to rx-offload's NAPI poll.  So they
- * reach the stack in exactly the order the chip produced them whichever
- * CPU each pass ran on; netif_rx() would use the backlog of the current
- * CPU and could reorder frames read on different CPUs.  The echo helpers
- * are can-dev's own: an echo goes to the local sockets only when the
- * sender asked for loopback, as af_can expects of IFF_ECHO drivers.
+ * Receive path, on can-dev's rx-offload in manual mode.  Whoever runs
+ * the chip under its lock (the IRQ thread, the watch, stopping and
+ * restarting) queues received frames, error frames and the echoes of
+ * sent frames, and hands the batch to rx-offload's NAPI poll before
+ * releasing the lock.  So they reach the stack in exactly the order the
+ * chip produced them whichever CPU each pass ran on; netif_rx() would
+ * use the backlog of the current CPU and could reorder frames read on
+ * different CPUs.  The echo helpers are can-dev's own: an echo goes to
+ * the local sockets only when the sender asked for loopback, as af_can
+ * expects of IFF_ECHO drivers.
  *
  * rx-offload's poll counts every frame it delivers as received, echoes
  * included; echoes are the driver's sent traffic, so the interface
@@ -96,8 +97,14 @@ unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 	return len;
 }
 
-/* From mcp2510_unlock(): let NAPI deliver what this lock hold queued. */
-void mcp2510_rx_flush(struct mcp2510_priv *priv)
+/*
+ * Hand what this hold of the chip lock queued to the stack, before the
+ * next holder can queue more: the stack sees the chip's order.  The
+ * finish schedules NAPI with bottom halves off, and enabling them again
+ * runs its poll right here, under the chip lock, unless NAPI is already
+ * running elsewhere; it delivers the frames in order either way.
+ */
+void mcp2510_rx_deliver(struct mcp2510_priv *priv)
 {
 	lockdep_assert_held(&priv->lock);
 	priv->rx_in_pass = false;

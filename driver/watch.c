@@ -151,6 +151,7 @@ static void mcp2510_watch_work(struct work_struct *work)
 	mcp2510_watch_end_polling(priv);
 	mcp2510_watch_end_storm(priv);
 	delay = mcp2510_watch_delay(priv);
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 	mcp2510_tx_retry(priv);
 
