@@ -192,10 +192,11 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv)
 }
 
 /*
- * An automatic restart that failed: can-dev leaves the interface bus-off
- * with its carrier off and schedules nothing more, and a manual restart is
- * refused while restart-ms is set.  Try again later, at most once a
- * second, so that a chip without power does not flood the log.
+ * An automatic restart that failed: the interface stays bus-off with its
+ * carrier off (see mcp2510_do_set_mode()), can-dev schedules nothing
+ * more, and a manual restart is refused while restart-ms is set.  Try
+ * again later, at most once a second, so that a chip without power does
+ * not flood the log.
  */
 static void mcp2510_restart_retry(struct mcp2510_priv *priv)
 {
@@ -227,20 +228,28 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 	if (mode != CAN_MODE_START)
 		return -EOPNOTSUPP;
 
+	/*
+	 * can-dev restarts only a bus-off interface, and the interface is
+	 * bus-off only once the chip is halted: a chip that sleeps and needs
+	 * everything programmed again.
+	 */
 	mcp2510_lock(priv);
-	/* A halted chip sleeps and needs everything programmed again. */
-	if (!priv->hw_running) {
-		ret = -ENETDOWN;
-	} else if (priv->halted) {
+	if (priv->hw_running && priv->halted)
 		ret = mcp2510_restart_halted_locked(priv);
-	} else {
-		ret = mcp2510_restart(&priv->chip);
-		if (!ret)
-			priv->can.state = CAN_STATE_ERROR_ACTIVE;
-	}
+	else
+		ret = -ENETDOWN;
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
-	if (ret)
+	/*
+	 * can_restart() turned the carrier on before calling us.  can-dev
+	 * before 2023 (6.1.21, say) leaves it on when the restart fails, and
+	 * its next restart, the retry above included, then hits
+	 * BUG_ON(netif_carrier_ok()); later can-dev turns it off itself.
+	 */
+	if (ret) {
+		netif_carrier_off(ndev);
 		return ret;
+	}
 
 	mcp2510_tx_wake_queue(priv);
 	return 0;
