@@ -159,7 +159,7 @@ struct mcp2510_counters {
 	u32 tx_errors;			/* TXERR / aborted frames */
 	u32 warnings, passives, bus_offs, restarts;
 	u32 irq_loops;			/* passes through the interrupt loop */
-	u32 irq_storms;			/* loops stopped by the bound */
+	u32 irq_loop_bound;		/* loops stopped by the bound */
 	u32 recoveries;			/* re-initialised after a health check */
 };
 

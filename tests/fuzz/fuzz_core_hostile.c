@@ -305,7 +305,7 @@ static void do_start(struct hostile *h)
 static void do_irq(struct hostile *h)
 {
 	u32 loops = h->chip.counters.irq_loops;
-	u32 storms = h->chip.counters.irq_storms;
+	u32 bounds = h->chip.counters.irq_loop_bound;
 	int ret = mcp2510_irq_handle(&h->chip);
 	u32 passes = h->chip.counters.irq_loops - loops;
 
@@ -314,7 +314,7 @@ static void do_irq(struct hostile *h)
 	FUZZ_CHECK(h->chip.irq_edge || passes == 1);
 	/* a storm is reported and counted, and only a storm */
 	FUZZ_CHECK((ret == -EAGAIN) ==
-		   (h->chip.counters.irq_storms == storms + 1));
+		   (h->chip.counters.irq_loop_bound == bounds + 1));
 	FUZZ_CHECK(ret != -EAGAIN || passes == MCP2510_IRQ_MAX_PASSES);
 }
 

@@ -306,7 +306,7 @@ static void test_edge_triggered_loops_until_clear(void **state)
 	assert_false(ch_int_asserted(node));
 	assert_int_equal(node->ev.rx_count, 2);
 	assert_int_equal(node->ev.tx_done_count, 1);
-	assert_int_equal(node->core.counters.irq_storms, 0);
+	assert_int_equal(node->core.counters.irq_loop_bound, 0);
 	ch_rig_free(rig);
 }
 
@@ -321,12 +321,12 @@ static void test_storm_is_bounded(void **state)
 	node->after_xfer = set_errif;
 	set_errif(node);
 	assert_int_equal(mcp2510_irq_handle(&node->core), 1);
-	assert_int_equal(node->core.counters.irq_storms, 0);
+	assert_int_equal(node->core.counters.irq_loop_bound, 0);
 
 	node->core.irq_edge = true;
 	loops = node->core.counters.irq_loops;
 	assert_int_equal(mcp2510_irq_handle(&node->core), -EAGAIN);
-	assert_int_equal(node->core.counters.irq_storms, 1);
+	assert_int_equal(node->core.counters.irq_loop_bound, 1);
 	assert_int_equal(node->core.counters.irq_loops - loops,
 			 MCP2510_IRQ_MAX_PASSES);
 
