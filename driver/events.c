@@ -32,23 +32,25 @@ static void mcp2510_event_tx_done(void *ctx, unsigned int slot)
 {
 	struct mcp2510_priv *priv = ctx;
 	struct net_device_stats *stats = &priv->ndev->stats;
+	unsigned int frame_len = 0;
 
-	stats->tx_bytes += mcp2510_rx_queue_echo(priv, slot);
+	stats->tx_bytes += mcp2510_rx_queue_echo(priv, slot, &frame_len);
 	stats->tx_packets++;
-	mcp2510_tx_slot_release(priv, slot);
+	mcp2510_tx_slot_release(priv, slot, frame_len);
 }
 
 static void mcp2510_event_tx_aborted(void *ctx, unsigned int slot)
 {
 	struct mcp2510_priv *priv = ctx;
+	unsigned int frame_len = 0;
 
-	/* A bus-off restart may have flushed the echo skbs already. */
+	/* No echo skb: none could be made when the frame was loaded. */
 	if (priv->can.echo_skb[slot]) {
-		can_free_echo_skb(priv->ndev, slot, NULL);
+		can_free_echo_skb(priv->ndev, slot, &frame_len);
 		priv->ndev->stats.tx_dropped++;
 		priv->ndev->stats.tx_aborted_errors++;
 	}
-	mcp2510_tx_slot_release(priv, slot);
+	mcp2510_tx_slot_release(priv, slot, frame_len);
 }
 
 static void mcp2510_event_state(void *ctx, enum can_state state,
@@ -57,6 +59,9 @@ static void mcp2510_event_state(void *ctx, enum can_state state,
 	struct mcp2510_priv *priv = ctx;
 	enum can_state tx_state, rx_state;
 
+	/* A chip back from bus-off by itself has nothing left to halt. */
+	if (state != CAN_STATE_BUS_OFF)
+		priv->halt_requested = false;
 	if (state == priv->can.state)
 		return;
 

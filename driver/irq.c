@@ -65,7 +65,10 @@ static bool mcp2510_irq_storm(struct mcp2510_priv *priv, int handled)
  */
 irqreturn_t mcp2510_irq_hard(int irq, void *data)
 {
-	mcp2510_rx_stamp_irq(data);
+	struct mcp2510_priv *priv = data;
+
+	mcp2510_rx_stamp_irq(priv);
+	atomic_inc(&priv->watch.irqs_fired);
 	return IRQ_WAKE_THREAD;
 }
 
@@ -76,11 +79,13 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data)
 	int handled;
 
 	mcp2510_lock(priv);
+	priv->watch.irqs_seen = atomic_read(&priv->watch.irqs_fired);
 	handled = mcp2510_irq_handle(&priv->chip);
 	/* Stopping the chip from inside the core's pass is not allowed. */
 	if (priv->halt_requested)
 		mcp2510_halt_locked(priv);
 	storm = mcp2510_irq_storm(priv, handled);
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 
 	/* Handled by disabling the line: not for the spurious detector. */

@@ -50,6 +50,8 @@ struct mcp2510_watch {
 	unsigned long irq_back_at;	/* jiffies: INT enabled again */
 	unsigned long empty_since;	/* jiffies: start of the counting */
 	unsigned int empty_irqs;	/* calls that found nothing or failed */
+	atomic_t irqs_fired;		/* hard IRQs, ever */
+	int irqs_seen;			/* irqs_fired when the thread last ran */
 	/* ethtool -S */
 	u64 irq_storms;
 	u64 missed_irqs;		/* work found by polling an edge line */
@@ -98,8 +100,9 @@ struct mcp2510_priv {
 	unsigned int tx_fifo_len;
 	bool tx_loading;		/* the work holds a popped skb */
 	u8 tx_inflight;			/* bit n: TX buffer n holds a frame */
-	/* BQL: the length on the wire of the frame in TX buffer n */
-	unsigned int tx_bytes[MCP2510_TXB_COUNT];
+	/* BQL: frames ended in this hold of the chip lock, under lock */
+	unsigned int tx_done_frames;
+	unsigned int tx_done_bytes;
 	struct work_struct tx_work;
 
 	/* sysfs acceptance filters, programmed into the chip on open */
@@ -130,8 +133,8 @@ extern const struct mcp2510_events mcp2510_netdev_events;
 int mcp2510_rx_init(struct mcp2510_priv *priv);
 void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb);
 unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
-				   unsigned int slot);
-void mcp2510_rx_flush(struct mcp2510_priv *priv);
+				   unsigned int slot, unsigned int *frame_len);
+void mcp2510_rx_deliver(struct mcp2510_priv *priv);
 void mcp2510_rx_stamp_irq(struct mcp2510_priv *priv);
 void mcp2510_rx_pass(struct mcp2510_priv *priv, bool first_waited);
 ktime_t mcp2510_rx_stamp_frame(struct mcp2510_priv *priv);
@@ -154,11 +157,12 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv);
 /* tx.c */
 netdev_tx_t mcp2510_start_xmit(struct sk_buff *skb, struct net_device *ndev);
 void mcp2510_tx_work(struct work_struct *work);
-void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot);
+void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot,
+			     unsigned int bytes);
+void mcp2510_tx_report_done(struct mcp2510_priv *priv);
 void mcp2510_tx_retry(struct mcp2510_priv *priv);
 void mcp2510_tx_flush(struct mcp2510_priv *priv);
 void mcp2510_tx_wake_queue(struct mcp2510_priv *priv);
-void mcp2510_tx_forget(struct mcp2510_priv *priv);
 
 /* irq.c */
 irqreturn_t mcp2510_irq_hard(int irq, void *data);

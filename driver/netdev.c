@@ -119,6 +119,7 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 		mcp2510_stop(&priv->chip);
 	else
 		priv->hw_running = true;
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 	if (ret)
 		goto out_free_irq;
@@ -134,17 +135,21 @@ out_disable_rx:
 	return ret;
 }
 
-/* Does nothing when hw_up failed, e.g. on resume: the interface may be up. */
+/*
+ * Also after a failed hw_up (on resume: the interface stays up), when
+ * only the TX work may still hold frames start_xmit queued meanwhile.
+ */
 void mcp2510_hw_down(struct mcp2510_priv *priv)
 {
-	if (!priv->hw_running)
-		return;
-
 	/* No more interrupts or loads: the chip is ours alone from here. */
-	mcp2510_watch_stop(priv);
-	free_irq(priv->spi->irq, priv);
+	if (priv->hw_running) {
+		mcp2510_watch_stop(priv);
+		free_irq(priv->spi->irq, priv);
+	}
 	cancel_work_sync(&priv->tx_work);
 	mcp2510_tx_flush(priv);
+	if (!priv->hw_running)
+		return;
 
 	mcp2510_lock(priv);
 	if (!priv->halted)
@@ -152,7 +157,7 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 	priv->halted = false;
 	priv->halt_requested = false;
 	priv->hw_running = false;
-	mcp2510_tx_forget(priv);
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 
 	mcp2510_rx_disable(priv);
@@ -163,13 +168,23 @@ void mcp2510_hw_down(struct mcp2510_priv *priv)
 /*
  * Bus-off: keep the chip off the bus until can-dev restarts it, by hand or
  * after restart-ms.  The interface becomes bus-off only once the chip is
- * stopped and its frames aborted: a restart must find a quiet device.
+ * stopped and its frames aborted: a restart must find a quiet device.  A
+ * halt the SPI did not let through stays requested, and the next pass of
+ * the IRQ thread or of the watch tries again; meanwhile the frames stay
+ * in flight, as the chip may still send them.
  */
 void mcp2510_halt_locked(struct mcp2510_priv *priv)
 {
+	int ret;
+
 	lockdep_assert_held(&priv->lock);
+	ret = mcp2510_halt(&priv->chip);
+	if (ret) {
+		netdev_warn_once(priv->ndev, "cannot halt the chip at bus-off: %pe\n",
+				 ERR_PTR(ret));
+		return;
+	}
 	priv->halt_requested = false;
-	mcp2510_stop(&priv->chip);
 	priv->halted = true;
 	/* Bus-off is the controller's as a whole: no direction to blame. */
 	can_change_state(priv->ndev, NULL, CAN_STATE_BUS_OFF, CAN_STATE_BUS_OFF);
@@ -177,10 +192,11 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv)
 }
 
 /*
- * An automatic restart that failed: can-dev leaves the interface bus-off
- * with its carrier off and schedules nothing more, and a manual restart is
- * refused while restart-ms is set.  Try again later, at most once a
- * second, so that a chip without power does not flood the log.
+ * An automatic restart that failed: the interface stays bus-off with its
+ * carrier off (see mcp2510_do_set_mode()), can-dev schedules nothing
+ * more, and a manual restart is refused while restart-ms is set.  Try
+ * again later, at most once a second, so that a chip without power does
+ * not flood the log.
  */
 static void mcp2510_restart_retry(struct mcp2510_priv *priv)
 {
@@ -212,20 +228,28 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 	if (mode != CAN_MODE_START)
 		return -EOPNOTSUPP;
 
+	/*
+	 * can-dev restarts only a bus-off interface, and the interface is
+	 * bus-off only once the chip is halted: a chip that sleeps and needs
+	 * everything programmed again.
+	 */
 	mcp2510_lock(priv);
-	/* A halted chip sleeps and needs everything programmed again. */
-	if (!priv->hw_running) {
-		ret = -ENETDOWN;
-	} else if (priv->halted) {
+	if (priv->hw_running && priv->halted)
 		ret = mcp2510_restart_halted_locked(priv);
-	} else {
-		ret = mcp2510_restart(&priv->chip);
-		if (!ret)
-			priv->can.state = CAN_STATE_ERROR_ACTIVE;
-	}
+	else
+		ret = -ENETDOWN;
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
-	if (ret)
+	/*
+	 * can_restart() turned the carrier on before calling us.  can-dev
+	 * before 2023 (6.1.21, say) leaves it on when the restart fails, and
+	 * its next restart, the retry above included, then hits
+	 * BUG_ON(netif_carrier_ok()); later can-dev turns it off itself.
+	 */
+	if (ret) {
+		netif_carrier_off(ndev);
 		return ret;
+	}
 
 	mcp2510_tx_wake_queue(priv);
 	return 0;

@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * Receive path, on can-dev's rx-offload in manual mode.  Whoever holds the
- * chip lock (the IRQ thread, the watch polling the chip, the TX work)
- * queues received frames, error frames and the echoes of sent frames, and
- * releasing the lock hands the batch to rx-offload's NAPI poll.  So they
- * reach the stack in exactly the order the chip produced them whichever
- * CPU each pass ran on; netif_rx() would use the backlog of the current
- * CPU and could reorder frames read on different CPUs.  The echo helpers
- * are can-dev's own: an echo goes to the local sockets only when the
- * sender asked for loopback, as af_can expects of IFF_ECHO drivers.
+ * Receive path, on can-dev's rx-offload in manual mode.  Whoever runs
+ * the chip under its lock (the IRQ thread, the watch, stopping and
+ * restarting) queues received frames, error frames and the echoes of
+ * sent frames, and hands the batch to rx-offload's NAPI poll before
+ * releasing the lock.  So they reach the stack in exactly the order the
+ * chip produced them whichever CPU each pass ran on; netif_rx() would
+ * use the backlog of the current CPU and could reorder frames read on
+ * different CPUs.  The echo helpers are can-dev's own: an echo goes to
+ * the local sockets only when the sender asked for loopback, as af_can
+ * expects of IFF_ECHO drivers.
  *
  * rx-offload's poll counts every frame it delivers as received, echoes
  * included; echoes are the driver's sent traffic, so the interface
@@ -78,10 +79,11 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
  * The echo of the frame sent from @slot, behind everything read before
  * its completion; can-dev drops it instead when the sender wanted no
  * loopback.  Returns the frame's data length for tx_bytes, which the
- * helper does not when it drops the echo.
+ * helper does not when it drops the echo, and sets @frame_len to the
+ * length on the wire the echo skb carried for BQL.
  */
 unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
-				   unsigned int slot)
+				   unsigned int slot, unsigned int *frame_len)
 {
 	struct sk_buff *skb = priv->can.echo_skb[slot];
 	unsigned int len;
@@ -91,12 +93,18 @@ unsigned int mcp2510_rx_queue_echo(struct mcp2510_priv *priv,
 		return 0;
 	len = can_skb_get_data_len(skb);
 	skb->tstamp = mcp2510_rx_stamp_event(priv);
-	can_rx_offload_get_echo_skb_queue_tail(&priv->offload, slot, NULL);
+	can_rx_offload_get_echo_skb_queue_tail(&priv->offload, slot, frame_len);
 	return len;
 }
 
-/* From mcp2510_unlock(): let NAPI deliver what this lock hold queued. */
-void mcp2510_rx_flush(struct mcp2510_priv *priv)
+/*
+ * Hand what this hold of the chip lock queued to the stack, before the
+ * next holder can queue more: the stack sees the chip's order.  The
+ * finish schedules NAPI with bottom halves off, and enabling them again
+ * runs its poll right here, under the chip lock, unless NAPI is already
+ * running elsewhere; it delivers the frames in order either way.
+ */
+void mcp2510_rx_deliver(struct mcp2510_priv *priv)
 {
 	lockdep_assert_held(&priv->lock);
 	priv->rx_in_pass = false;

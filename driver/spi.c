@@ -4,6 +4,7 @@
  * device, or a few in one message, through bounce buffers because the
  * core hands us its stack.
  */
+#include <linux/bug.h>
 #include <linux/delay.h>
 #include <linux/spi/spi.h>
 #include <linux/string.h>
@@ -16,12 +17,15 @@ void mcp2510_lock(struct mcp2510_priv *priv)
 }
 
 /*
- * What was queued for the stack under the lock goes to NAPI before the
- * next holder can queue more: the stack sees the chip's order.
+ * The frames sent in this hold are reported to BQL as one completion.
+ * Whoever ran the core in a way that queues frames for the stack has
+ * handed them on (mcp2510_rx_deliver()); frames left here would wait
+ * for the next holder.
  */
 void mcp2510_unlock(struct mcp2510_priv *priv)
 {
-	mcp2510_rx_flush(priv);
+	mcp2510_tx_report_done(priv);
+	WARN_ON_ONCE(!skb_queue_empty_lockless(&priv->offload.skb_irq_queue));
 	mutex_unlock(&priv->lock);
 }
 

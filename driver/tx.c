@@ -8,10 +8,14 @@
  *
  * Byte queue limits: every frame start_xmit accepts is reported sent,
  * with its length on the wire (can_skb_get_frame_len()), and every one
- * is reported completed exactly once, however it ends: sent, aborted,
- * dropped before it reached the chip or forgotten with a failed chip.
- * The length of a frame in a TX buffer is kept beside the buffer, not in
- * its echo skb, which can-dev may free or never have taken.
+ * is reported completed exactly once, however it ends.  A frame in a TX
+ * buffer carries its length in its echo skb, and the echo helpers give
+ * it back when the frame is sent or aborted; the completions of one hold
+ * of the chip lock are reported together when it is released.  The halt
+ * at bus-off ends every frame in the chip before can-dev's restart could
+ * flush an echo skb, so none is lost that way.  A frame dropped before
+ * it reached the chip, or whose echo skb could not be made, is completed
+ * on the spot.
  */
 #include <linux/can/dev.h>
 #include <linux/can/skb.h>
@@ -142,7 +146,6 @@ static void mcp2510_tx_loaded(struct mcp2510_priv *priv, int slot,
 	priv->tx_loading = false;
 	if (slot >= 0) {
 		priv->tx_inflight |= BIT(slot);
-		priv->tx_bytes[slot] = bytes;
 	} else {
 		netdev_completed_queue(priv->ndev, 1, bytes);
 		mcp2510_tx_wake(priv);
@@ -150,27 +153,40 @@ static void mcp2510_tx_loaded(struct mcp2510_priv *priv, int slot,
 	spin_unlock_bh(&priv->tx_lock);
 }
 
-/*
- * Under tx_lock.  The core may report a buffer that mcp2510_tx_forget()
- * gave up already: its frame was completed then, not again.
- */
-static void mcp2510_tx_slot_end(struct mcp2510_priv *priv, unsigned int slot)
+/* With the chip lock held: a frame of @bytes on the wire has ended. */
+static void mcp2510_tx_count_done(struct mcp2510_priv *priv,
+				  unsigned int bytes)
 {
-	if (!(priv->tx_inflight & BIT(slot)))
-		return;
-	priv->tx_inflight &= ~BIT(slot);
-	netdev_completed_queue(priv->ndev, 1, priv->tx_bytes[slot]);
-	priv->tx_bytes[slot] = 0;
+	lockdep_assert_held(&priv->lock);
+	priv->tx_done_frames++;
+	priv->tx_done_bytes += bytes;
 }
 
-/* Called with the chip lock held, from the work or from an event. */
-void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot)
+/*
+ * Called with the chip lock held, from an event: the frame in @slot has
+ * ended, and @bytes is what its echo skb carried (0 without one).
+ */
+void mcp2510_tx_slot_release(struct mcp2510_priv *priv, unsigned int slot,
+			     unsigned int bytes)
 {
+	mcp2510_tx_count_done(priv, bytes);
 	spin_lock_bh(&priv->tx_lock);
-	mcp2510_tx_slot_end(priv, slot);
+	priv->tx_inflight &= ~BIT(slot);
 	mcp2510_tx_wake(priv);
 	mcp2510_tx_retry_locked(priv);
 	spin_unlock_bh(&priv->tx_lock);
+}
+
+/* Before the chip lock is released: report what this hold completed. */
+void mcp2510_tx_report_done(struct mcp2510_priv *priv)
+{
+	lockdep_assert_held(&priv->lock);
+	if (!priv->tx_done_frames)
+		return;
+	netdev_completed_queue(priv->ndev, priv->tx_done_frames,
+			       priv->tx_done_bytes);
+	priv->tx_done_frames = 0;
+	priv->tx_done_bytes = 0;
 }
 
 static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb,
@@ -190,9 +206,11 @@ static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb,
 	mcp2510_tx_loaded(priv, slot, bytes);
 	/*
 	 * The chip lock keeps the IRQ thread out until the echo skb is in
-	 * place, so a completion can never find the slot empty.
+	 * place, so a completion can never find the slot empty.  Without
+	 * one (no memory for a clone) nothing carries the length.
 	 */
-	can_put_echo_skb(skb, priv->ndev, slot, 0);
+	if (can_put_echo_skb(skb, priv->ndev, slot, bytes))
+		mcp2510_tx_count_done(priv, bytes);
 	return 0;
 }
 
@@ -250,27 +268,4 @@ void mcp2510_tx_flush(struct mcp2510_priv *priv)
 		mcp2510_unlock(priv);
 		mcp2510_tx_loaded(priv, -ENETDOWN, bytes);
 	}
-}
-
-/*
- * After the chip stopped, with the chip lock held: an echo skb still held
- * belongs to a frame the core could not abort (the SPI failed), and
- * nothing will ever complete it.  Nor will anything end a buffer still
- * taken, with or without an echo skb: its frame is completed here.
- */
-void mcp2510_tx_forget(struct mcp2510_priv *priv)
-{
-	unsigned int slot;
-
-	lockdep_assert_held(&priv->lock);
-	for (slot = 0; slot < MCP2510_TXB_COUNT; slot++) {
-		if (!priv->can.echo_skb[slot])
-			continue;
-		can_free_echo_skb(priv->ndev, slot, NULL);
-		priv->ndev->stats.tx_dropped++;
-	}
-	spin_lock_bh(&priv->tx_lock);
-	for (slot = 0; slot < MCP2510_TXB_COUNT; slot++)
-		mcp2510_tx_slot_end(priv, slot);
-	spin_unlock_bh(&priv->tx_lock);
 }

@@ -95,8 +95,13 @@ static void mcp2510_watch_poll(struct mcp2510_priv *priv)
 	int handled;
 
 	handled = mcp2510_irq_handle(&priv->chip);
-	/* Work found outside a storm is an interrupt the line never brought. */
-	if (handled > 0 && !w->polling)
+	/*
+	 * Work found outside a storm is an interrupt the line never brought,
+	 * unless INT fired since the thread last ran: the thread, waiting
+	 * for the chip lock, would have found that work itself.
+	 */
+	if (handled > 0 && !w->polling &&
+	    atomic_read(&w->irqs_fired) == w->irqs_seen)
 		w->missed_irqs++;
 }
 
@@ -146,6 +151,7 @@ static void mcp2510_watch_work(struct work_struct *work)
 	mcp2510_watch_end_polling(priv);
 	mcp2510_watch_end_storm(priv);
 	delay = mcp2510_watch_delay(priv);
+	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 	mcp2510_tx_retry(priv);
 
@@ -186,6 +192,7 @@ void mcp2510_watch_storm(struct mcp2510_priv *priv)
 
 void mcp2510_watch_init(struct mcp2510_priv *priv)
 {
+	atomic_set(&priv->watch.irqs_fired, 0);
 	INIT_DELAYED_WORK(&priv->watch.work, mcp2510_watch_work);
 }
 
@@ -198,6 +205,7 @@ void mcp2510_watch_start(struct mcp2510_priv *priv)
 	w->polling = false;
 	w->storming = false;
 	w->recovering = false;
+	w->irqs_seen = atomic_read(&w->irqs_fired);
 	mcp2510_unlock(priv);
 	queue_delayed_work(system_percpu_wq, &w->work,
 			   mcp2510_watch_delay(priv));

@@ -93,9 +93,8 @@ static unsigned int mode_timeout_us(const struct mcp2510_chip *chip)
 	return us > MODE_TIMEOUT_MIN_US ? us : MODE_TIMEOUT_MIN_US;
 }
 
-/* Poll CANSTAT.OPMOD until @accept says yes, backing off up to 1 ms. */
-static int opmode_wait(struct mcp2510_chip *chip,
-		       bool (*accept)(u8 opmode, u8 mode), u8 mode)
+/* Poll CANSTAT.OPMOD until it reads @mode, backing off up to 1 ms. */
+static int opmode_wait(struct mcp2510_chip *chip, u8 mode)
 {
 	unsigned int budget = mode_timeout_us(chip), waited = 0;
 	unsigned int wait = POLL_FIRST_US;
@@ -106,7 +105,7 @@ static int opmode_wait(struct mcp2510_chip *chip,
 		err = mcp2510_reg_read(chip, MCP2510_REG_CANSTAT, &canstat, 1);
 		if (err)
 			return err;
-		if (accept(FIELD_GET(MCP2510_CANSTAT_OPMOD_MASK, canstat), mode))
+		if (FIELD_GET(MCP2510_CANSTAT_OPMOD_MASK, canstat) == mode)
 			return 0;
 		if (waited >= budget)
 			return -ETIMEDOUT;
@@ -114,16 +113,6 @@ static int opmode_wait(struct mcp2510_chip *chip,
 		waited += wait;
 		wait = poll_backoff(wait);
 	}
-}
-
-static bool opmode_is(u8 opmode, u8 mode)
-{
-	return opmode == mode;
-}
-
-static bool opmode_is_not(u8 opmode, u8 mode)
-{
-	return opmode != mode;
 }
 
 int mcp2510_set_mode(struct mcp2510_chip *chip, u8 mode)
@@ -137,44 +126,12 @@ int mcp2510_set_mode(struct mcp2510_chip *chip, u8 mode)
 				 FIELD_PREP(MCP2510_CANCTRL_REQOP_MASK, mode));
 	if (err)
 		return err;
-	return opmode_wait(chip, opmode_is, mode);
+	return opmode_wait(chip, mode);
 }
 
 int mcp2510_sleep(struct mcp2510_chip *chip)
 {
 	return mcp2510_set_mode(chip, MCP2510_MODE_SLEEP);
-}
-
-/*
- * Setting WAKIF with WAKIE enabled is the chip's own wake-up cause.  It
- * restarts the oscillator and comes up in listen-only mode whatever was
- * running before, so the wanted mode has to be requested again.
- */
-int mcp2510_wake(struct mcp2510_chip *chip)
-{
-	u8 mode = chip->started ? chip->opmode : MCP2510_MODE_CONFIG;
-	int err;
-
-	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTE, MCP2510_INT_WAK,
-				 MCP2510_INT_WAK);
-	if (err)
-		return err;
-	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_WAK,
-				 MCP2510_INT_WAK);
-	if (err)
-		return err;
-	mcp2510_delay_us(chip, ost_us(chip));
-	err = opmode_wait(chip, opmode_is_not, MCP2510_MODE_SLEEP);
-	if (err)
-		return err;
-	err = mcp2510_set_mode(chip, mode);
-	if (err)
-		return err;
-	err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, MCP2510_INT_WAK, 0);
-	if (err)
-		return err;
-	chip->irq.flags_cleared = true;
-	return mcp2510_reg_write(chip, MCP2510_REG_CANINTE, &chip->inte, 1);
 }
 
 void mcp2510_wake_filter_set(struct mcp2510_chip *chip, bool on)

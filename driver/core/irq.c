@@ -528,6 +528,6 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 		if (!chip->irq_edge || !n)
 			return handled;
 	}
-	chip->counters.irq_storms++;
+	chip->counters.irq_loop_bound++;
 	return -EAGAIN;
 }

@@ -159,7 +159,7 @@ struct mcp2510_counters {
 	u32 tx_errors;			/* TXERR / aborted frames */
 	u32 warnings, passives, bus_offs, restarts;
 	u32 irq_loops;			/* passes through the interrupt loop */
-	u32 irq_storms;			/* loops stopped by the bound */
+	u32 irq_loop_bound;		/* loops stopped by the bound */
 	u32 recoveries;			/* re-initialised after a health check */
 };
 
@@ -247,8 +247,6 @@ int mcp2510_reg_write(struct mcp2510_chip *chip, u8 addr, const u8 *buf,
 int mcp2510_reg_modify(struct mcp2510_chip *chip, u8 addr, u8 mask, u8 val);
 int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status);
 int mcp2510_rts(struct mcp2510_chip *chip, u8 slots);
-/* MCP2515/MCP25625 only (-EOPNOTSUPP on an MCP2510). */
-int mcp2510_rx_status(struct mcp2510_chip *chip, u8 *status);
 
 /* ---- bring-up and modes ---- */
 /* RESET, start-up wait, check the chip answers: -ENODEV when it does not. */
@@ -256,7 +254,6 @@ int mcp2510_hw_reset(struct mcp2510_chip *chip);
 /* Request MCP2510_MODE_*, poll CANSTAT.OPMOD: -ETIMEDOUT if it never comes. */
 int mcp2510_set_mode(struct mcp2510_chip *chip, u8 mode);
 int mcp2510_sleep(struct mcp2510_chip *chip);
-int mcp2510_wake(struct mcp2510_chip *chip);
 /*
  * Wake-on-CAN.  mcp2510_wake_filter_set() chooses whether the next start
  * sets CNF3.WAKFIL (glitches on RXCAN do not wake the chip).  After
@@ -299,6 +296,12 @@ int mcp2510_start(struct mcp2510_chip *chip, const struct can_bittiming *bt,
 		  u32 ctrlmode);
 /* Abort pending frames (tx_aborted for each), mask interrupts, sleep. */
 int mcp2510_stop(struct mcp2510_chip *chip);
+/*
+ * mcp2510_stop() at bus-off, where the chip would recover and send its
+ * frames: when ABAT cannot be set, nothing is given up or changed and the
+ * error is returned, for the caller to try again.
+ */
+int mcp2510_halt(struct mcp2510_chip *chip);
 /*
  * Bus-off recovery or a manual restart: drop queued frames (tx_aborted),
  * reset the chip (clearing TEC/REC), program what mcp2510_start() was

@@ -111,20 +111,6 @@ int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status)
 	return err;
 }
 
-int mcp2510_rx_status(struct mcp2510_chip *chip, u8 *status)
-{
-	const u8 tx[2] = { MCP2515_INSTR_RX_STATUS, 0 };
-	u8 rx[2];
-	int err;
-
-	if (!chip->variant->has_buffer_instrs)
-		return -EOPNOTSUPP;
-	err = mcp2510_xfer(chip, tx, rx, sizeof(tx));
-	if (!err)
-		*status = rx[1];
-	return err;
-}
-
 int mcp2510_rts(struct mcp2510_chip *chip, u8 slots)
 {
 	const u8 tx = MCP2510_INSTR_RTS | (slots & MCP2510_RTS_ALL);

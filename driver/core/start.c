@@ -152,6 +152,24 @@ int mcp2510_stop(struct mcp2510_chip *chip)
 }
 
 /*
+ * A bus-off chip recovers by itself after 128 x 11 recessive bits and
+ * sends what it holds, so its frames are given up only once ABAT went
+ * through.  After that nothing more can go out: the rest of the stop is
+ * done as well as the SPI allows, and a restart resets the chip anyway.
+ */
+int mcp2510_halt(struct mcp2510_chip *chip)
+{
+	int err;
+
+	err = mcp2510_reg_modify(chip, MCP2510_REG_CANCTRL,
+				 MCP2510_CANCTRL_ABAT, MCP2510_CANCTRL_ABAT);
+	if (err)
+		return err;
+	mcp2510_stop(chip);
+	return 0;
+}
+
+/*
  * A full reset clears TEC and REC, which is what a restart from bus-off
  * is for; the chip's own recovery (128 x 11 recessive bits) needs no call.
  * The state event tells the caller the chip is error-active again; the

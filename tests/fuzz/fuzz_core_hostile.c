@@ -51,7 +51,6 @@ enum op {
 	OP_IRQ_AGAIN,		/* weight: the interrupt loop is the main job */
 	OP_TX_SUBMIT,
 	OP_SLEEP,
-	OP_WAKE,
 	OP_BERR_COUNTER,
 	OP_REGS_DUMP,
 	OP_PIN_BF,
@@ -306,7 +305,7 @@ static void do_start(struct hostile *h)
 static void do_irq(struct hostile *h)
 {
 	u32 loops = h->chip.counters.irq_loops;
-	u32 storms = h->chip.counters.irq_storms;
+	u32 bounds = h->chip.counters.irq_loop_bound;
 	int ret = mcp2510_irq_handle(&h->chip);
 	u32 passes = h->chip.counters.irq_loops - loops;
 
@@ -315,7 +314,7 @@ static void do_irq(struct hostile *h)
 	FUZZ_CHECK(h->chip.irq_edge || passes == 1);
 	/* a storm is reported and counted, and only a storm */
 	FUZZ_CHECK((ret == -EAGAIN) ==
-		   (h->chip.counters.irq_storms == storms + 1));
+		   (h->chip.counters.irq_loop_bound == bounds + 1));
 	FUZZ_CHECK(ret != -EAGAIN || passes == MCP2510_IRQ_MAX_PASSES);
 }
 
@@ -426,9 +425,6 @@ static void run_op(struct hostile *h)
 		return;
 	case OP_SLEEP:
 		CHECK_RESULT(mcp2510_sleep(&h->chip), 0, -ETIMEDOUT, -EIO);
-		return;
-	case OP_WAKE:
-		CHECK_RESULT(mcp2510_wake(&h->chip), 0, -ETIMEDOUT, -EIO);
 		return;
 	case OP_BERR_COUNTER:
 		CHECK_RESULT(mcp2510_berr_counter(&h->chip, &bec), 0, -EIO);

@@ -151,8 +151,8 @@ def sim_seeds():
 
 # ---- core_hostile (fuzz_core_hostile.c) ---------------------------------
 (H_HW_RESET, H_SET_MODE, H_START, H_STOP, H_RESTART, H_IRQ, H_IRQ2,
- H_TX_SUBMIT, H_SLEEP, H_WAKE, H_BERR, H_DUMP, H_PIN_BF, H_PIN_RTS,
- H_FILTERS, H_PEER, H_WAKE_ARM, H_WAKE_ACK, H_GARBLE) = range(19)
+ H_TX_SUBMIT, H_SLEEP, H_BERR, H_DUMP, H_PIN_BF, H_PIN_RTS,
+ H_FILTERS, H_PEER, H_WAKE_ARM, H_WAKE_ACK, H_GARBLE) = range(18)
 MODEL_MCP2510, MODEL_MCP2515 = 0, 1
 MISO_INPUT, MISO_STUCK, MISO_MODEL = 0, 1, 2
 CORE_OSC_16M = 2
@@ -201,7 +201,7 @@ def core_seeds():
     for i in range(6):
         # the peer's frame only lets time pass: loopback hears nobody
         s.submit(0x100 + i, [i]).peer(0x7FF, []).op(H_IRQ)
-    s.op(H_RESTART, H_SLEEP, H_WAKE, H_DUMP, H_PIN_RTS).u8(1)
+    s.op(H_RESTART, H_SLEEP, H_DUMP, H_PIN_RTS).u8(1)
     write("core_hostile", "model-loopback-one-shot-edge", s.bytes())
 
     s = CoreScript(MODEL_MCP2510, MISO_MODEL).start()
@@ -222,7 +222,7 @@ def core_seeds():
 
     for fill in (0x00, 0xFF):
         s = CoreScript(MODEL_MCP2515, MISO_STUCK, fill=fill, edge=True)
-        s.op(H_HW_RESET, H_SET_MODE).u8(MODE_NORMAL).op(H_IRQ, H_WAKE)
+        s.op(H_HW_RESET, H_SET_MODE).u8(MODE_NORMAL).op(H_IRQ, H_SLEEP)
         write("core_hostile", "stuck-miso-%02x" % fill, s.bytes())
 
     # wake-on-CAN: stop, arm (with WAKFIL asked for), a peer's frame

@@ -164,6 +164,35 @@ static void test_stop_in_bus_off(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * The halt at bus-off with its first transfer failing.  The chip was not
+ * told to abort, so it recovers by itself after 128 x 11 recessive bits
+ * and sends its frame: the halt must not have reported that frame
+ * aborted, and the frame is reported sent instead.  Tried again, the
+ * halt stops the chip.
+ */
+static void test_halt_failing_gives_up_nothing(void **state)
+{
+	struct ch_rig *rig = bus_off_rig(32, 0);
+	struct ch_node *node = &rig->node[0];
+
+	(void)state;
+	run_to_bus_off(rig);
+	node->fail_at = node->xfer_count + 1;
+	assert_int_equal(mcp2510_halt(&node->core), -EIO);
+	assert_int_equal(node->ev.tx_aborted_count, 0);
+
+	ch_run_idle(rig, 100 * MS);
+	assert_int_equal(rig->node[1].ev.rx_count, 1);
+	assert_int_equal(node->ev.tx_done_count, 1);
+	assert_int_equal(node->ev.tx_aborted_count, 0);
+
+	assert_int_equal(mcp2510_halt(&node->core), 0);
+	assert_int_equal(sim_chip_opmode(&node->sim), MCP2510_MODE_SLEEP);
+	assert_int_equal(node->core.state, CAN_STATE_STOPPED);
+	ch_rig_free(rig);
+}
+
 static void test_restart_from_bus_off(void **state)
 {
 	struct ch_rig *rig = bus_off_rig(1000, 0);
@@ -510,6 +539,7 @@ int main(void)
 		cmocka_unit_test(test_bus_off_and_the_chips_own_recovery),
 		cmocka_unit_test(test_restart_from_bus_off),
 		cmocka_unit_test(test_stop_in_bus_off),
+		cmocka_unit_test(test_halt_failing_gives_up_nothing),
 		cmocka_unit_test(test_bus_error_reporting),
 		cmocka_unit_test(test_bus_error_direction),
 		cmocka_unit_test(test_error_counters),

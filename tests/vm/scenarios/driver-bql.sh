@@ -63,6 +63,19 @@ can-echo can0 >/dev/null || fail "can-echo did not finish"
 expect_drained "frames with and without loopback"
 no_kernel_warning
 
+echo "== the controller's loopback mode"
+# The chip receives its own frames and sends nothing on the bus.
+ip link set can0 down
+can_up can0 125000 loopback on
+send_all 20 122
+can-echo can0 >/dev/null || fail "can-echo did not finish in loopback mode"
+expect_drained "frames sent in loopback mode"
+ip link set can0 down
+can_up can0 125000 loopback off
+send_all 20 122
+expect_drained "loopback mode off again"
+no_kernel_warning
+
 echo "== bus-off and restart with frames queued"
 ip link set can0 down
 can_up can0 125000 restart-ms 20
