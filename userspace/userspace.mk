@@ -196,8 +196,10 @@ uninstall-userspace:
 		while [ -n "$$d" ] && rmdir "$(DESTDIR)$$d" 2>/dev/null; do d=$${d%/*}; done; \
 	done
 
+# systemd-analyze verify checks that the unit's commands exist: procps
+# brings its ExecReload's /bin/kill.
 userspace-check: userspace
-	@$(ENSURE) can-utils binutils groff-base systemd
+	@$(ENSURE) can-utils binutils groff-base systemd procps
 	@$(TOP)/$(US_DIR)/check-userspace $(US_OUT) $(TOP)/$(US_DIR)/include/mcp2510.h
 
 # the same checks on the libgpiod 2 build

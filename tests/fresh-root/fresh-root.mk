@@ -8,13 +8,20 @@
 #                                   deps as a user without root fails
 #                                   naming the packages, installing
 #                                   nothing, and after make deps as root
-#                                   that user's make userspace unit passes
+#                                   that user's make userspace unit passes;
+#                                   and make deb-check as root: the Debian
+#                                   packages built, installed with DKMS
+#                                   against the suite's own kernel headers,
+#                                   used and purged
 #   make fresh-root-check-bookworm  the same in the Debian 12 root alone
 #   make fresh-root-check-trixie    the same in the Debian 13 root alone
 #
 # FRESH_ROOT_REPO= names another git tree whose HEAD is cloned instead.
 # fresh-root-background starts the check in the background at idle
-# priority; fresh-root-await waits for it and gives its verdict.
+# priority; fresh-root-await waits for it and gives its verdict.  make
+# check runs the first as its first step, so that the check takes what the
+# other steps leave of the cores (and waits on the network meanwhile), and
+# the second just before vmtest, which leaves no core idle.
 
 FRESH_ROOT := $(TOP)/tests/fresh-root/check
 FRESH_ROOT_SUITES := bookworm trixie
@@ -36,3 +43,6 @@ fresh-root-background:
 
 fresh-root-await:
 	@$(FRESH_ROOT) --await --repo $(FRESH_ROOT_REPO) $(FRESH_ROOT_SUITES)
+
+CHECK_STEPS := fresh-root-background $(CHECK_STEPS)
+CHECK_STEPS += fresh-root-await
