@@ -737,7 +737,7 @@ static void test_phantom_checked_flood(void **state)
 	const struct flood f = { .id = 0x123, .start = 5, .count = 40 };
 	struct rig *r = *state;
 	struct sim_chip *chip = &r->chip[0];
-	struct can_frame cf = simh_frame(0x123, 8, (const u8[]){ 5, 0, 0, 0 });
+	struct can_frame cf = simh_frame(0x123, 8, (const u8[8]){ 5 });
 	struct can_frame got;
 	struct flood_count c;
 
