@@ -3,7 +3,9 @@
 # far side (lost, duplicated, reordered, corrupted), with what the system
 # spent on them: CPU from /proc/stat, the two chips' interrupts from
 # /proc/interrupts and the SPI devices' statistics from sysfs where the
-# kernel keeps them.
+# kernel keeps them.  Before them, at each bit rate, can-transit's lone
+# frames give the latency from write() on one interface to recvmsg() on
+# the other.
 
 # Bits of an 8-byte standard data frame with its interframe space,
 # without stuff bits: the utilisation is a lower bound.
@@ -100,7 +102,34 @@ flood() {
 	fi
 }
 
+# transit BITRATE: TRANSITS lone frames from A to B, one "transit" result
+# line; a lone frame lost or damaged fails.
+transit() {
+	rate=$1
+	if ! pair_up "$rate"; then
+		record "transit-$rate" fail "cannot bring the pair up at $rate"
+		return
+	fi
+	can-transit "$A" "$B" "$TRANSITS" -i 102 >"$OUT/transit.txt" 2>&1 || true
+	link_down "$A" "$B"
+	line=$(grep '^transit: ' "$OUT/transit.txt" || true)
+	if [ -z "$line" ]; then
+		record "transit-$rate" fail "can-transit: $(tail -n 1 "$OUT/transit.txt")"
+		return
+	fi
+	echo "transit $A>$B $rate ${line#transit: }" >>"$RESULTS"
+	summary="median $(field "$line" median_us) us, 99% $(field "$line" p99_us) us, max $(field "$line" max_us) us over $(field "$line" received)/$TRANSITS lone frames"
+	if [ "$(field "$line" lost)" = 0 ] && [ "$(field "$line" damaged)" = 0 ]; then
+		record "transit-$rate" pass "$summary"
+	else
+		record "transit-$rate" fail "$summary, lost $(field "$line" lost), damaged $(field "$line" damaged)"
+	fi
+}
+
 floods() {
+	for rate in $BITRATES; do
+		transit "$rate"
+	done
 	for rate in $BITRATES; do
 		flood "$A" "$B" "$rate" 100
 		flood "$B" "$A" "$rate" 101

@@ -1,10 +1,11 @@
 # tests/hw/hw.mk: the hardware test kit (docs/hardware-testing.md).
 #
-#   make hwtest IFACES="can0 can1" [KIT_FRAMES=20000]
+#   make hwtest IFACES="can0 can1" [KIT_FRAMES=20000] [KIT_TRANSITS=1000]
 #        [KIT_BITRATES="125000 500000 1000000"] [HWTEST_OUT=DIR]
 #	runs tests/hw/mcp2510-hwtest on two CAN interfaces of this machine
 #	(root; a board with two chips on one bus), with the kit's programs
-#	(can-flood, can-echo, can-dlc from tests/vm/guest) built first
+#	(can-flood, can-transit, can-echo, can-dlc from tests/vm/guest)
+#	built first
 #   make install-hwtest   mcp2510-hwtest into $(DESTDIR)$(PREFIX)/bin, its
 #	scripts and programs (private: generic names) into
 #	$(PREFIX)/lib/mcp2510-hwtest; part of make install-userspace
@@ -17,7 +18,7 @@ HW_SCRIPTS := $(addprefix $(HW_DIR)/,lib.sh info.sh checks.sh modes.sh floods.sh
 # The kit's programs are built with the userspace tools (make userspace,
 # with a distribution's flags), so that installing compiles nothing.
 HW_BIN := $(US_OUT)/hwtest
-HW_PROGRAMS := $(addprefix $(HW_BIN)/,can-flood can-echo can-dlc)
+HW_PROGRAMS := $(addprefix $(HW_BIN)/,can-flood can-transit can-echo can-dlc)
 HW_LIB = $(PREFIX)/lib/mcp2510-hwtest
 VM_GUEST_ROOT := $(BUILD)/vm/guest-root
 
@@ -25,6 +26,7 @@ VM_GUEST_ROOT := $(BUILD)/vm/guest-root
 hwtest: $(HW_PROGRAMS)
 	@[ -n "$(IFACES)" ] || { echo 'make hwtest: say which interfaces: IFACES="can0 can1"'; exit 2; }
 	PATH="$(HW_BIN):$$PATH" $(if $(KIT_FRAMES),KIT_FRAMES=$(KIT_FRAMES)) \
+		$(if $(KIT_TRANSITS),KIT_TRANSITS=$(KIT_TRANSITS)) \
 		$(if $(KIT_BITRATES),KIT_BITRATES="$(KIT_BITRATES)") \
 		$(HW_DIR)/mcp2510-hwtest $(if $(HWTEST_OUT),-o $(HWTEST_OUT)) $(IFACES)
 

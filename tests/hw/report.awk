@@ -19,6 +19,12 @@ $1 == "flood" {
 	next
 }
 
+$1 == "transit" {
+	n = ++ntransits; tdir[n] = $2; trate[n] = $3
+	for (i = 4; i <= NF; i++) { split($i, kv, "="); tv[n, kv[1]] = kv[2] }
+	next
+}
+
 function rate_map(key, worst,   s, n, r, v, seen, out) {
 	# per bit rate, the worse of the two directions
 	for (n = 1; n <= nfloods; n++) {
@@ -51,7 +57,13 @@ END {
 			fv[n, "rx_spi_transfers_per_frame"] "/" fv[n, "tx_spi_transfers_per_frame"],
 			fv[n, "rx_spi_bytes_per_frame"] "/" fv[n, "tx_spi_bytes_per_frame"]
 	printf "\n(ovf: the receiver's rx_over_errors; spi: receiving / sending side's SPI device, - where\n"
-	printf "the kernel keeps no statistics; utilisation counts no stuff bits; latency is not measured)\n"
+	printf "the kernel keeps no statistics; utilisation counts no stuff bits)\n"
+	printf "\n%-12s %8s %7s %5s %7s %9s %9s %9s\n", "latency", "bitrate", "recv", "lost", "damaged",
+		"median us", "99% us", "max us"
+	for (n = 1; n <= ntransits; n++)
+		printf "%-12s %8s %7s %5s %7s %9s %9s %9s\n", tdir[n], trate[n], tv[n, "received"], tv[n, "lost"],
+			tv[n, "damaged"], tv[n, "median_us"], tv[n, "p99_us"], tv[n, "max_us"]
+	printf "(lone frames, from write() on one interface to recvmsg() on the other)\n"
 	printf "checks: %d passed, %d failed, %d not run, %d not offered by the driver\n",
 		count["pass"], count["fail"], count["skip"], count["n/a"]
 
@@ -64,6 +76,11 @@ END {
 	# the per-frame costs of the first (slowest) flood, as the bench's
 	split("rx_spi_bytes_per_frame rx_spi_transfers_per_frame tx_spi_bytes_per_frame tx_spi_transfers_per_frame irqs_per_frame", per, " ")
 	for (i = 1; i <= 5; i++) o = o "    " q(per[i]) ": " (nfloods ? num(fv[1, per[i]]) : "null") ",\n"
+	o = o "    \"latency_us\": {"
+	for (n = 1; n <= ntransits; n++)
+		o = o (n > 1 ? ", " : "") q(trate[n]) ": {\"median\": " num(tv[n, "median_us"]) ", \"p99\": " \
+			num(tv[n, "p99_us"]) ", \"max\": " num(tv[n, "max_us"]) ", \"lost\": " num(tv[n, "lost"]) "}"
+	o = o "},\n"
 	o = o "    \"floods\": ["
 	for (n = 1; n <= nfloods; n++) {
 		o = o (n > 1 ? "," : "") "\n      {\"direction\": " q(fdir[n]) ", \"bitrate\": " frate[n]

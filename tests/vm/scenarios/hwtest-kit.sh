@@ -26,7 +26,7 @@ expected='' want_status=0 verdict=pass
 [ "$VM_DRIVER" = mcp2510 ] || expected='restart-ms-reported ' want_status=1 verdict=fail
 
 frames=200 status=0
-KIT_FRAMES=$frames mcp2510-hwtest -o /tmp/kit can0 can1 || status=$?
+KIT_FRAMES=$frames KIT_TRANSITS=50 mcp2510-hwtest -o /tmp/kit can0 can1 || status=$?
 cat /tmp/kit/summary.json
 failed=$(sed -n 's/^check \([^ ]*\) fail .*/\1/p' /tmp/kit/results.txt | grep -v '^flood-' | tr '\n' ' ')
 if [ "$VM_DRIVER" = mcp2510 ]; then
@@ -40,4 +40,8 @@ fi
 grep -q "^  \"$VM_DRIVER\": {" /tmp/kit/summary.json || fail "the report does not name $VM_DRIVER"
 grep -q "\"verdict\": \"$verdict\"" /tmp/kit/summary.json || fail "the summary's verdict is not $verdict"
 [ "$(grep -c '^flood ' /tmp/kit/results.txt)" -eq 6 ] || fail "not six floods in the results"
+[ "$(grep -c '^transit .* lost=0 damaged=0 ' /tmp/kit/results.txt)" -eq 3 ] ||
+	fail "not three latency runs without loss in the results"
+grep -q '"latency_us": {"125000": {"median": [0-9]' /tmp/kit/summary.json ||
+	fail "the summary has no latency"
 echo "hwtest-kit: ok"
