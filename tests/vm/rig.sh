@@ -216,3 +216,30 @@ chips_load() {
 		nap 0.1
 	done
 }
+
+# libgpiod's tools took another syntax with version 2, which the guest has
+# where its kernel lacks the v1 ABI (tests/vm/kernel-info gpiod):
+#   gpio_info CHIP                 the chip's lines
+#   gpio_set CHIP OFFSET=VALUE...  set the lines, release them and return
+#   gpio_get CHIP OFFSET...        the lines' values as "1 0 1"
+#   gpio_chip LABEL                the gpiochip of that label (v2 takes no
+#                                  labels for chips)
+gpiod_v1() {
+	gpiodetect --version | grep -q ' v1\.'
+}
+gpio_info() {
+	if gpiod_v1; then gpioinfo "$1"; else gpioinfo -c "$1"; fi
+}
+gpio_set() {
+	_chip=$1
+	shift
+	if gpiod_v1; then gpioset "$_chip" "$@"; else gpioset -t 0 -c "$_chip" "$@"; fi
+}
+gpio_get() {
+	_chip=$1
+	shift
+	if gpiod_v1; then gpioget "$_chip" "$@"; else gpioget --numeric -c "$_chip" "$@"; fi
+}
+gpio_chip() {
+	gpiodetect | awk -v l="[$1]" '$2 == l { print $1 }'
+}

@@ -21,8 +21,8 @@
 # $(call vm_kdir,6.12), a shell expression (failing when it is not there).
 
 VM_DIR := $(TOP)/tests/vm
-# The Debian kernels, the debug kernel, and the busybox package.
-CLEAN_KEEP += kernels vm/busybox
+# The Debian kernels, the debug kernel, the busybox package and libgpiod 2.
+CLEAN_KEEP += kernels vm/busybox vm/gpiod2
 # The debug kernel last: make check builds it in the background, and the
 # Debian kernels are fetched while that build ends.
 VM_KERNELS ?= 6.1 6.12 rt $(KERNEL_NEWEST) debug

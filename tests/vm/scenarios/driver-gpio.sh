@@ -1,7 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --sim-param gpio_controller=1
 # vm-kernels: 6.12 rt debug
-# vm-config: GPIO_CDEV_V1
 # The chip's spare pins as a gpiochip when the firmware marks the device
 # gpio-controller: gpioinfo shows the driver's five lines with their fixed
 # directions, gpioset drives RX0BF/RX1BF (the simulated pins follow, and
@@ -17,14 +16,14 @@ expect() { # WHAT GOT WANTED
 
 # The gpiochip is labelled with the SPI device's name (6.12: spi-<node>).
 dev=$(sim_state 0 spi_device)
-chip=$(gpiodetect | awk -v l="[$dev]" '$2 == l { print $1 }')
+chip=$(gpio_chip "$dev")
 [ -n "$chip" ] || { gpiodetect; fail "no gpiochip labelled $dev"; }
 gpiodetect | grep "^$chip " | grep -q '(5 lines)' || fail "$chip has not 5 lines"
-gpioinfo "$chip" | tee /tmp/info
+gpio_info "$chip" | tee /tmp/info
 n=0
 for want in "RX0BF output" "RX1BF output" "TX0RTS input" "TX1RTS input" "TX2RTS input"; do
 	name=${want% *} dir=${want#* }
-	grep -q "line *$n: *\"$name\" .* $dir" /tmp/info || fail "line $n is not $name, $dir"
+	grep -q "line *$n:[[:space:]]*\"$name\"[[:space:]].*$dir" /tmp/info || fail "line $n is not $name, $dir"
 	n=$((n + 1))
 done
 
@@ -32,13 +31,13 @@ echo "== gpioset drives RX0BF and RX1BF"
 for line in 0 1; do
 	pin=rx${line}bf
 	expect "$pin at start" "$(sim_state 0 $pin)" 1
-	gpioset "$chip" $line=0
+	gpio_set "$chip" $line=0
 	expect "$pin after gpioset $line=0" "$(sim_state 0 $pin)" 0
 	expect "chip1 $pin" "$(sim_state 1 $pin)" 1
-	gpioset "$chip" $line=1
+	gpio_set "$chip" $line=1
 	expect "$pin after gpioset $line=1" "$(sim_state 0 $pin)" 1
 done
-gpioset "$chip" 0=0 1=1
+gpio_set "$chip" 0=0 1=1
 can_up can0 125000
 expect "rx0bf after ifup's chip reset" "$(sim_state 0 rx0bf)" 0
 expect "rx1bf after ifup's chip reset" "$(sim_state 0 rx1bf)" 1
@@ -65,10 +64,10 @@ esac
 expect "rx0bf after the failed write" "$(sim_state 0 rx0bf)" 1
 
 echo "== gpioget reads TX0RTS-TX2RTS"
-expect "TXnRTS idle" "$(gpioget "$chip" 2 3 4)" "1 1 1"
+expect "TXnRTS idle" "$(gpio_get "$chip" 2 3 4)" "1 1 1"
 for levels in 6:"0 1 1" 5:"1 0 1" 3:"1 1 0" 0:"0 0 0"; do
 	echo "${levels%%:*}" >$SIM/chip0/rts
-	expect "TXnRTS with rts=${levels%%:*}" "$(gpioget "$chip" 2 3 4)" "${levels#*:}"
+	expect "TXnRTS with rts=${levels%%:*}" "$(gpio_get "$chip" 2 3 4)" "${levels#*:}"
 done
 echo 7 >$SIM/chip0/rts
 

@@ -3,7 +3,6 @@
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x --sim-param time_scale=8
 # vm-kernels: 6.12
-# vm-config: GPIO_CDEV_V1
 # Mainline mcp251x, a driver this project did not write, on two simulated
 # chips: it probes, brings both up at 125 kbit/s and moves frames both ways,
 # which checks the chip model and the simulated SPI controller against an
@@ -103,8 +102,9 @@ for i in 0 1; do
 done
 
 # Every interrupt was served, so INT is back high, and libgpiod reads it so.
-gpioinfo mcp2510-sim
-[ "$(gpioget mcp2510-sim 0 1)" = "1 1" ] || fail "INT0/INT1 not idle after the traffic"
+gpiochip=$(gpio_chip mcp2510-sim)
+gpio_info "$gpiochip"
+[ "$(gpio_get "$gpiochip" 0 1)" = "1 1" ] || fail "INT0/INT1 not idle after the traffic"
 
 ip -details -statistics link show can0
 ip -details -statistics link show can1

@@ -2,7 +2,6 @@
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp251x
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
 # vm-kernels: 6.12
-# vm-config: GPIO_CDEV_V1
 # The simulator unloaded and loaded again with spidev_node=1: chip 0 stays a
 # CAN interface, chip 1 becomes /dev/spidevB.1.  Through spidev writes alone
 # the chip is reset, set to loopback and made to receive its own frame, and
@@ -15,7 +14,6 @@ set -eu
 . /lib/rig.sh
 
 sim=$SIM
-gpiochip=mcp2510-sim
 int1=1   # line INT1: the INT lines come first, one per chip,
 rx0bf1=3 # then RX0BF0, RX0BF1, ...
 
@@ -41,7 +39,11 @@ line_watched() {
 
 # gpiomon on INT1 for one falling edge, in the background, into FILE
 watch_int1() {
-	gpiomon -b -n 1 -f "$gpiochip" "$int1" >"$1" &
+	if gpiod_v1; then
+		gpiomon -b -n 1 -f "$gpiochip" "$int1" >"$1" &
+	else
+		gpiomon -n 1 -e falling -c "$gpiochip" "$int1" >"$1" &
+	fi
 	MON_PID=$!
 	wait_for 5 line_watched || fail "gpiomon did not request INT1"
 }
@@ -67,8 +69,9 @@ wait_for 5 test -c "$dev" || fail "$dev did not appear"
 spidev=$(sim_state 1 spi_device)
 [ "$(basename "$(readlink /sys/bus/spi/devices/"$spidev"/driver)")" = spidev ] ||
 	fail "$spidev is not bound to spidev"
-gpioinfo "$gpiochip"
-[ "$(gpioget "$gpiochip" "$int1")" = 1 ] || fail "INT1 is not idle (high)"
+gpiochip=$(gpio_chip mcp2510-sim)
+gpio_info "$gpiochip"
+[ "$(gpio_get "$gpiochip" "$int1")" = 1 ] || fail "INT1 is not idle (high)"
 
 echo "== spi_errors"
 spi '\300' # RESET
@@ -98,16 +101,16 @@ watch_int1 /tmp/edge1.txt
 spi '\201' # RTS TXB0
 wait "$MON_PID" || fail "gpiomon failed"
 cat /tmp/edge1.txt
-grep -q 'FALLING EDGE' /tmp/edge1.txt || fail "gpiomon saw no falling edge on INT1"
+grep -qi 'falling' /tmp/edge1.txt || fail "gpiomon saw no falling edge on INT1"
 [ "$(sim_state 1 int)" -eq 0 ] || fail "INT1 not asserted"
 expect_counter 1 frames_rx 1
 expect_counter 1 interrupts 1
-[ "$(gpioget "$gpiochip" "$rx0bf1")" = 0 ] || fail "RX0BF1 does not show RXB0 full"
+[ "$(gpio_get "$gpiochip" "$rx0bf1")" = 0 ] || fail "RX0BF1 does not show RXB0 full"
 
 echo "== int_edge_miss"
 spi '\002\054\000' # CANINTF = 0: INT rises, RXB0 is free again
 [ "$(sim_state 1 int)" -eq 1 ] || fail "INT1 still asserted"
-[ "$(gpioget "$gpiochip" "$rx0bf1")" = 1 ] || fail "RX0BF1 still low with RXB0 free"
+[ "$(gpio_get "$gpiochip" "$rx0bf1")" = 1 ] || fail "RX0BF1 still low with RXB0 free"
 echo 1 >$sim/chip1/int_edge_miss
 watch_int1 /tmp/edge2.txt
 spi '\201' # the second frame: this falling edge is lost
@@ -119,19 +122,19 @@ expect_counter 1 int_edges_missed 1
 spi '\002\054\000'
 spi '\201' # the third frame: delivered again
 wait "$MON_PID" || fail "gpiomon failed"
-grep -q 'FALLING EDGE' /tmp/edge2.txt || fail "the edge after the missed one was lost too"
+grep -qi 'falling' /tmp/edge2.txt || fail "the edge after the missed one was lost too"
 expect_counter 1 frames_rx 3
 expect_counter 1 interrupts 3
 
 echo "== power loss"
-[ "$(gpioget "$gpiochip" "$int1")" = 0 ] || fail "INT1 not asserted before the power loss"
+[ "$(gpio_get "$gpiochip" "$int1")" = 0 ] || fail "INT1 not asserted before the power loss"
 echo 0 >$sim/chip1/power
-[ "$(gpioget "$gpiochip" "$int1")" = 1 ] || fail "INT1 of an unpowered chip is not pulled high"
+[ "$(gpio_get "$gpiochip" "$int1")" = 1 ] || fail "INT1 of an unpowered chip is not pulled high"
 [ "$(sim_state 1 ready)" = 0 ] || fail "an unpowered chip claims to be ready"
 echo 1 >$sim/chip1/power
 wait_for 5 state_is 1 ready 1 || fail "chip1 did not start up after power-on"
 [ "$(sim_state 1 opmode)" = config ] || fail "chip1 is not in configuration mode after power-on"
-[ "$(gpioget "$gpiochip" "$int1")" = 1 ] || fail "INT1 asserted after power-on"
+[ "$(gpio_get "$gpiochip" "$int1")" = 1 ] || fail "INT1 asserted after power-on"
 
 echo "== chip 0 still works as can0"
 ip link set can0 type can bitrate 125000

@@ -1,7 +1,6 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp2510
 # vm-kernels: 6.1
-# vm-config: GPIO_CDEV_V1
 # mcp2510d as a service: chip 0 is handed to spidev and bridged by mcp2510d
 # to vcan0, chip 1 is can1, driven by mcp2510.ko, on the same simulated
 # bus.  Frames go both ways through cangen and candump; the bus destroys 32
@@ -93,7 +92,7 @@ wait_for 10 test -e /sys/class/net/can0 || fail "chip 1 did not become a CAN int
 ip link set can0 name can1
 dev=/dev/spidev$(sim_state 0 spi_bus).$(sim_state 0 spi_cs)
 wait_for 10 test -c "$dev" || fail "$dev did not appear"
-gpiochip=$(gpiodetect | awk '$2 == "[mcp2510-sim]" { print $1 }')
+gpiochip=$(gpio_chip mcp2510-sim)
 [ -n "$gpiochip" ] || fail "no gpiochip labelled mcp2510-sim"
 can_up can1 125000
 ip link add dev vcan0 type vcan

@@ -2,7 +2,6 @@
 # vm-run: --nodes 2 --variant mcp2510 --driver mcp2510
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp2510
 # vm-kernels: 6.12
-# vm-config: GPIO_CDEV_V1
 # The userspace port against the kernel driver on one bus: chip 0 is can0,
 # driven by mcp2510.ko; chip 1 is handed to spidev, and mcp2510ctl drives it
 # through /dev/spidevB.C with its INT line taken through libgpiod.  Frames
@@ -60,10 +59,10 @@ drv=$(basename "$(readlink /sys/class/net/can0/device/driver)")
 dev=/dev/spidev$(sim_state 1 spi_bus).$(sim_state 1 spi_cs)
 wait_for test -c "$dev" || fail "$dev did not appear"
 gpiodetect
-gpiochip=$(gpiodetect | awk '$2 == "[mcp2510-sim]" { print $1 }')
+gpiochip=$(gpio_chip mcp2510-sim)
 [ -n "$gpiochip" ] || fail "no gpiochip labelled mcp2510-sim"
-int1=$(gpioinfo "$gpiochip" |
-	sed -n 's/^[[:space:]]*line *\([0-9]*\): *"INT1".*/\1/p')
+int1=$(gpio_info "$gpiochip" |
+	sed -n 's/^[[:space:]]*line *\([0-9]*\):[[:space:]]*"INT1".*/\1/p')
 [ -n "$int1" ] || fail "$gpiochip has no line named INT1"
 echo "chip 1: $dev, INT on $gpiochip line $int1"
 
