@@ -2,7 +2,7 @@
 # modules on Debian 13 (trixie), in a root made with debootstrap.
 #
 #   make trixie-root    build/trixie/root: a minimal Debian 13 with the
-#                       toolchain, cmocka, libgpiod 2, the 6.12 kernel
+#                       toolchain (and arm64's cross compiler), cmocka, libgpiod 2, the 6.12 kernel
 #                       headers and those of the newest series the project
 #                       builds for (KERNEL_NEWEST, tests/matrix/kernels) from
 #                       trixie-backports, from the Debian archive the host's
@@ -21,9 +21,12 @@
 
 TRIXIE_ROOT := $(BUILD)/trixie/root
 # What make userspace, unit, unit-asan and the modules' W=1 C=1 build need;
-# make-root adds the newest series' headers from trixie-backports.
+# make-root adds the newest series' headers from trixie-backports.  The
+# arm64 cross compiler the newest arm64 kernel names (gcc-14) builds the
+# device-tree boot's modules here (tests/vm/kbuild, tests/vm-arm64).
 TRIXIE_PACKAGES = build-essential make pkg-config libcmocka-dev libgpiod-dev \
-	linux-headers-$(shell dpkg --print-architecture) sparse debian-archive-keyring
+	linux-headers-$(shell dpkg --print-architecture) sparse debian-archive-keyring \
+	gcc-14-aarch64-linux-gnu
 TRIXIE_MAKE_ROOT = $(TOP)/tests/lib/make-root --newest-headers
 CLEAN_KEEP += trixie
 # What runs inside: the same Makefile, building into the root's /build,
