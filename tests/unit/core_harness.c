@@ -344,3 +344,14 @@ bool ch_frame_equal(const struct can_frame *a, const struct can_frame *b)
 	return a->can_id == b->can_id && a->len == b->len &&
 	       !memcmp(a->data, b->data, a->len);
 }
+
+void ch_order_frame(struct ch_order *o, const struct can_frame *cf)
+{
+	u32 seq = cf->data[0] | cf->data[1] << 8 | cf->data[2] << 16 |
+		  (u32)cf->data[3] << 24;
+
+	if (o->received && seq <= o->last_seq)
+		o->out_of_order++;
+	o->last_seq = seq;
+	o->received++;
+}

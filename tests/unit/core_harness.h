@@ -126,4 +126,17 @@ struct ch_spi_mark ch_spi_since(const struct ch_node *node,
 struct can_frame ch_frame(canid_t id, u8 len, u32 seq);
 bool ch_frame_equal(const struct can_frame *a, const struct can_frame *b);
 
+/*
+ * The order of a phantom flood's frames as a node receives them: the
+ * phantom numbers frame k in its first four bytes (little-endian), so a
+ * number not above the last one's is out of order.
+ */
+struct ch_order {
+	u32 received;
+	u32 out_of_order;
+	u32 last_seq;
+};
+
+void ch_order_frame(struct ch_order *o, const struct can_frame *cf);
+
 #endif /* CORE_HARNESS_H */

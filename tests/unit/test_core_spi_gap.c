@@ -21,9 +21,7 @@
 #define FLOOD_FRAMES	2000
 
 struct gap_result {
-	u32 received;
-	u32 out_of_order;
-	u32 last_seq;
+	struct ch_order order;	/* the flood's frames as received */
 	u64 gap_frames;		/* frames stored between two periods of one message */
 	u64 prev_rx;
 	unsigned int prev_left;
@@ -31,19 +29,11 @@ struct gap_result {
 
 static struct gap_result *result;
 
-static u32 frame_seq(const struct can_frame *cf)
-{
-	return cf->data[0] | cf->data[1] << 8 | cf->data[2] << 16 |
-	       (u32)cf->data[3] << 24;
-}
 
 static void count_rx(struct ch_node *node, const struct can_frame *cf)
 {
 	(void)node;
-	if (result->received && frame_seq(cf) <= result->last_seq)
-		result->out_of_order++;
-	result->last_seq = frame_seq(cf);
-	result->received++;
+	ch_order_frame(&result->order, cf);
 }
 
 /* after every period: did a frame reach a buffer since the message's last one? */
@@ -86,23 +76,23 @@ static u32 flood(enum mcp2510_model model, unsigned int p, u32 scale_pct,
 	ch_run_idle(rig, 10000 * MS);
 	assert_int_equal(sim_phantom_pending(&rig->bus), 0);
 
-	assert_int_equal(res->out_of_order, 0);
-	assert_int_equal(res->received + c->overflows, FLOOD_FRAMES);
+	assert_int_equal(res->order.out_of_order, 0);
+	assert_int_equal(res->order.received + c->overflows, FLOOD_FRAMES);
 	print_message("%s %s x%u.%02u: %u/%u received, %llu in a gap; per frame received %llu.%llu us SPI, %llu.%02llu messages, %llu.%02llu periods, %llu.%llu bytes\n",
 		      mcp2510_variant_get(model)->name, sim_spi_profile_name(p),
-		      scale_pct / 100, scale_pct % 100, res->received,
+		      scale_pct / 100, scale_pct % 100, res->order.received,
 		      FLOOD_FRAMES, (unsigned long long)res->gap_frames,
-		      (unsigned long long)(c->spi_busy_ns - busy) / res->received / 1000,
-		      (unsigned long long)(c->spi_busy_ns - busy) / res->received / 100 % 10,
-		      (unsigned long long)(node->messages - msgs) / res->received,
-		      (unsigned long long)(node->messages - msgs) * 100 / res->received % 100,
-		      (unsigned long long)(c->spi_transfers - periods) / res->received,
-		      (unsigned long long)(c->spi_transfers - periods) * 100 / res->received % 100,
-		      (unsigned long long)(c->spi_bytes - bytes) / res->received,
-		      (unsigned long long)(c->spi_bytes - bytes) * 10 / res->received % 10);
+		      (unsigned long long)(c->spi_busy_ns - busy) / res->order.received / 1000,
+		      (unsigned long long)(c->spi_busy_ns - busy) / res->order.received / 100 % 10,
+		      (unsigned long long)(node->messages - msgs) / res->order.received,
+		      (unsigned long long)(node->messages - msgs) * 100 / res->order.received % 100,
+		      (unsigned long long)(c->spi_transfers - periods) / res->order.received,
+		      (unsigned long long)(c->spi_transfers - periods) * 100 / res->order.received % 100,
+		      (unsigned long long)(c->spi_bytes - bytes) / res->order.received,
+		      (unsigned long long)(c->spi_bytes - bytes) * 10 / res->order.received % 10);
 	result = NULL;
 	ch_rig_free(rig);
-	return res->received;
+	return res->order.received;
 }
 
 /* Frames land between the periods of one message, and order holds. */

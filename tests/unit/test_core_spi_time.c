@@ -34,9 +34,7 @@ static const struct sim_spi_timing pi_like = {
 };
 
 struct flood_result {
-	u32 received;
-	u32 out_of_order;
-	u32 last_seq;
+	struct ch_order order;	/* the flood's frames as received */
 	u64 overflows;		/* the chip's count */
 	u64 core_overflows;	/* what the core reported */
 	u64 busy_ns;		/* SPI time the chip's traffic took */
@@ -59,20 +57,12 @@ static const struct sim_spi_timing slow_board_timing = {
 static struct flood_result *result;
 static struct can_frame flood_tmpl;
 
-static u32 frame_seq(const struct can_frame *cf)
-{
-	return cf->data[0] | cf->data[1] << 8 | cf->data[2] << 16 |
-	       (u32)cf->data[3] << 24;
-}
 
 static void count_rx(struct ch_node *node, const struct can_frame *cf)
 {
 	(void)node;
 	/* frames may go missing, but the rest come in order */
-	if (result->received && frame_seq(cf) <= result->last_seq)
-		result->out_of_order++;
-	result->last_seq = frame_seq(cf);
-	result->received++;
+	ch_order_frame(&result->order, cf);
 }
 
 static void flood_edge(enum mcp2510_model model, const struct sim_spi_timing *t,
@@ -108,7 +98,7 @@ static void flood_edge(enum mcp2510_model model, const struct sim_spi_timing *t,
 			 res->transfers;
 	res->handler_calls = node->core.counters.irq_loops - res->handler_calls;
 	print_message("%s: %u/%u frames, %llu overflows, SPI busy %llu us of %llu us, %llu messages, %llu periods, %llu passes\n",
-		      mcp2510_variant_get(model)->name, res->received,
+		      mcp2510_variant_get(model)->name, res->order.received,
 		      FLOOD_FRAMES, (unsigned long long)res->overflows,
 		      (unsigned long long)res->busy_ns / 1000,
 		      (unsigned long long)res->elapsed_ns / 1000,
@@ -141,8 +131,8 @@ static void zero_loss(enum mcp2510_model model)
 
 	flood(model, &pi_like, &res);
 	assert_flood_was_real(&res);
-	assert_int_equal(res.received, FLOOD_FRAMES);
-	assert_int_equal(res.out_of_order, 0);
+	assert_int_equal(res.order.received, FLOOD_FRAMES);
+	assert_int_equal(res.order.out_of_order, 0);
 	assert_int_equal(res.overflows, 0);
 	assert_int_equal(res.core_overflows, 0);
 }
@@ -177,7 +167,7 @@ static void test_slow_host_loses_frames(void **state)
 	/* one overflow flag may stand for several frames lost */
 	assert_true(res.core_overflows > 0);
 	assert_true(res.core_overflows <= res.overflows);
-	assert_int_equal(res.received + res.overflows, FLOOD_FRAMES);
+	assert_int_equal(res.order.received + res.overflows, FLOOD_FRAMES);
 }
 
 /*
@@ -209,13 +199,13 @@ static u32 stream(enum mcp2510_model model, u32 bitrate, u32 n, u32 *lost)
 		ch_run(rig, 100000);
 	}
 	ch_run_idle(rig, 100 * MS);
-	*lost = n - res.received;
+	*lost = n - res.order.received;
 	print_message("%s at %u bit/s: %u of %u received, %u out of order\n",
-		      mcp2510_variant_get(model)->name, bitrate, res.received,
-		      n, res.out_of_order);
+		      mcp2510_variant_get(model)->name, bitrate, res.order.received,
+		      n, res.order.out_of_order);
 	result = NULL;
 	ch_rig_free(rig);
-	return res.out_of_order;
+	return res.order.out_of_order;
 }
 
 static void test_stream_between_nodes(void **state)
@@ -272,10 +262,10 @@ static void slow_board(enum mcp2510_model model, u32 min_received,
 	struct flood_result res;
 
 	flood(model, &slow_board_timing, &res);
-	assert_int_equal(res.received + res.overflows, FLOOD_FRAMES);
+	assert_int_equal(res.order.received + res.overflows, FLOOD_FRAMES);
 	assert_true(res.overflows > 0);
-	assert_int_equal(res.out_of_order, 0);
-	assert_true(res.received >= min_received);
+	assert_int_equal(res.order.out_of_order, 0);
+	assert_true(res.order.received >= min_received);
 	assert_true(res.messages * 100 <= max_messages_x100 * res.handler_calls);
 }
 
