@@ -95,12 +95,9 @@ static long cpu_us(void)
 
 static unsigned long number(const char *s, int base)
 {
-	char *end;
 	unsigned long v;
 
-	errno = 0;
-	v = strtoul(s, &end, base);
-	if (errno || !*s || *end)
+	if (flood_number(s, base, &v))
 		usage();
 	return v;
 }
@@ -117,9 +114,8 @@ static void parse_opts(int argc, char **argv, struct opts *o)
 	while ((c = getopt(argc, argv, "i:s:w:t:l:f:")) != -1) {
 		switch (c) {
 		case 'i':
-			o->f.id = (canid_t)number(optarg, 16);
-			if (strlen(optarg) == 8)
-				o->f.id |= CAN_EFF_FLAG;
+			if (flood_id(optarg, &o->f.id))
+				usage();
 			break;
 		case 's':
 			o->f.start = (uint32_t)number(optarg, 0);

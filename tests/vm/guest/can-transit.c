@@ -56,12 +56,9 @@ static int64_t now_ns(void)
 
 static unsigned long number(const char *s, int base)
 {
-	char *end;
 	unsigned long v;
 
-	errno = 0;
-	v = strtoul(s, &end, base);
-	if (errno || !*s || *end)
+	if (flood_number(s, base, &v))
 		usage();
 	return v;
 }
@@ -149,9 +146,8 @@ int main(int argc, char **argv)
 	optind = 4;
 	while ((opt = getopt(argc, argv, "i:t:")) != -1) {
 		if (opt == 'i') {
-			f.id = (canid_t)number(optarg, 16);
-			if (strlen(optarg) == 8)
-				f.id |= CAN_EFF_FLAG;
+			if (flood_id(optarg, &f.id))
+				usage();
 		} else if (opt == 't') {
 			timeout_ms = (int)number(optarg, 10);
 		} else {

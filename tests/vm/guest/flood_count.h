@@ -29,6 +29,7 @@
 #ifndef FLOOD_COUNT_H
 #define FLOOD_COUNT_H
 
+#include <errno.h>
 #include <linux/can.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -151,6 +152,27 @@ static inline int flood_lossless(const struct flood_count *c, const struct flood
 {
 	return !flood_lost(c, f) && !c->duplicated && !c->reordered &&
 	       !c->corrupted;
+}
+
+/* @s, a whole unsigned number in @base, into *@v: 0, or -1 */
+static inline int flood_number(const char *s, int base, unsigned long *v)
+{
+	char *end;
+
+	errno = 0;
+	*v = strtoul(s, &end, base);
+	return errno || !*s || *end ? -1 : 0;
+}
+
+/* @s, an identifier in hex (eight digits: extended), into *@id: 0, or -1 */
+static inline int flood_id(const char *s, canid_t *id)
+{
+	unsigned long v;
+
+	if (flood_number(s, 16, &v) || v > CAN_EFF_MASK)
+		return -1;
+	*id = (canid_t)v | (strlen(s) == 8 ? CAN_EFF_FLAG : 0);
+	return 0;
 }
 
 static inline int flood_hex(int ch)
