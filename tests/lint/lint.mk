@@ -69,7 +69,7 @@ lint-tidy: | lint-deps
 	@echo "lint-tidy: $(words $(LINT_US_SRCS) $(LINT_US_OTHER) $(LINT_CORE_SRCS) $(LINT_SIM_SRCS)) files clean"
 
 # The model is left out: gcc 12's analyzer loses the bound of the
-# flood-frame byte loop in sim_bus.c and reports shifts past 32 bits
+# flood-frame byte loop in sim_phantom.c and reports shifts past 32 bits
 # that cannot happen; cppcheck and clang-tidy cover it.
 lint-analyzer: | lint-deps
 	@cd $(TOP) && printf '%s\n' $(LINT_US_SRCS) $(LINT_CORE_SRCS) | \

@@ -8,7 +8,7 @@
 SIM_DIR := tests/sim
 SIM_SRCS := $(addprefix $(SIM_DIR)/,sim_chip_regs.c sim_chip_spi.c \
 	    sim_chip_mode.c sim_chip_tx.c sim_chip_rx.c sim_chip_errors.c \
-	    sim_chip_timing.c sim_bus.c sim_frame.c sim_spi_time.c \
+	    sim_chip_timing.c sim_bus.c sim_phantom.c sim_frame.c sim_spi_time.c \
 	    sim_spi_profile.c)
 SIM_CPPFLAGS := -I$(TOP)/uapi -I$(TOP)/driver/core -I$(TOP)/$(SIM_DIR)
 # symbols the model may take from its environment (the kernel has both)

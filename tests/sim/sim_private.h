@@ -80,6 +80,12 @@ void sim_chip_request(struct sim_chip *chip, unsigned int n);
 u8 *sim_txbctrl(struct sim_chip *chip, unsigned int n);
 /* receive (sim_chip_rx.c) */
 void sim_chip_accept(struct sim_chip *chip, const struct can_frame *cf);
+
+/* The phantom node (sim_phantom.c), as the bus asks it. */
+void sim_phantom_timing(u32 ns, struct sim_timing *t);
+u32 sim_phantom_rx_ns(const struct sim_bus *bus);
+bool sim_phantom_peek(const struct sim_bus *bus, struct can_frame *cf, u32 *ns);
+void sim_phantom_sent(struct sim_bus *bus);
 bool sim_rxb_full(const struct sim_chip *chip, unsigned int n);
 /* fault confinement (sim_chip_errors.c) */
 void sim_chip_clear_counters(struct sim_chip *chip);
