@@ -205,7 +205,7 @@ echo "build-check: make clean and distclean"
 # A scratch build/ with what make clean keeps and what it removes.
 b=$tmp/clean
 kept="kernels/6.1/release kernels/apt/bookworm/status kernels/debug/stamp
-libgpiod/v2/pkgconfig/libgpiod.pc arm64/debian/release arm64/apt/status
+libgpiod/v2/pkgconfig/libgpiod.pc kernels/arm64-7.3/release arm64/apt/status
 trixie/root/etc/debian_version vm/busybox/bin/busybox"
 products="userspace/bin/mcp2510ctl unit/test_core_tx modules/6.1/mcp2510.ko
 vm/6.1/initramfs.cpio.gz arm64/initramfs.cpio.gz checkpatch/report.txt"
