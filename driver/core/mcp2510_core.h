@@ -102,12 +102,12 @@ struct mcp2510_events {
 	 * fired is after its end of frame too.  False when a flag other than
 	 * a receive flag was set (an overflow's ERRIF included), without
 	 * rollover, when the order of two full buffers cannot be known (see
-	 * irq.c), and in the first pass after a reset or a wake-up cleared
+	 * irq_rx.c), and in the first pass after a reset or a wake-up cleared
 	 * flags outside the loop.  A pass that reads READ STATUS alone cannot
 	 * see ERRIF, MERRF or WAKIF; after a possible overflow the next pass
 	 * reads them, but an error state change or a bus error raised since
 	 * the last full read may have asserted INT before the frame came
-	 * (irq.c reads them every few passes).
+	 * (irq_flags.c reads them every few passes).
 	 */
 	void (*rx_pass)(void *ctx, bool first_waited);
 };

@@ -50,6 +50,33 @@ u8 mcp2510_error_overflow(struct mcp2510_chip *chip, u8 eflg,
 void mcp2510_error_bus(struct mcp2510_chip *chip,
 		       const struct can_berr_counter *bec);
 
+/* The interrupt flags one pass handles (irq_flags.c reads them). */
+struct irq_flags {
+	u8 intf;		/* CANINTF bits to handle */
+	u8 eflg;
+	u8 txreq;		/* slots with TXREQ set ... */
+	bool have_txreq;	/* ... when READ STATUS was read */
+	u8 status;		/* what it read */
+	bool full;		/* CANINTF and EFLG were read */
+};
+
+/* irq_flags.c */
+int flags_read(struct mcp2510_chip *chip, struct irq_flags *f);
+
+/* irq_rx.c */
+/* Take the flagged RX buffers in @intf, the older frame first. */
+int rx_take(struct mcp2510_chip *chip, u8 intf);
+/* Whether the pass's first frame waited in the chip (see rx_pass). */
+bool rx_first_waited(const struct mcp2510_chip *chip,
+		     const struct irq_flags *f);
+
+/* irq_tx.c */
+/* Sent and dropped frames; returns the TXnIF bits to clear. */
+u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f);
+
+/* irq_error.c */
+int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f);
+
 /* filter.c */
 int mcp2510_filters_write(struct mcp2510_chip *chip);
 

@@ -89,7 +89,7 @@ nearly_in_order() {
 }
 # Each side's echoes of its own frames arrive in send order.  Received
 # frames too, unless the chip overflowed: then two adjacent frames may
-# swap (RXB1 can hold the newer frame, see driver/core/irq.c).
+# swap (RXB1 can hold the newer frame, see driver/core/irq_rx.c).
 for i in 0 1; do
 	own=$((100 * (i + 1))) other=$((200 - 100 * i))
 	counters /tmp/at$i.txt $own >/tmp/seq.txt

@@ -18,7 +18,7 @@
 # a quieter one).  So a frame may be missing only when the receiving chip
 # counted it as an overflow and the driver reported the overflow.  Such
 # stalls also leave the older frame in RXB1 now and then; the driver
-# tells (driver/core/irq.c), so no disorder at all is accepted.
+# tells (driver/core/irq_rx.c), so no disorder at all is accepted.
 # The debug kernel spends several times the CPU on a frame: there bus
 # time runs 200 times slower and the streams are a tenth as long, which
 # still keeps all three TX buffers and both RX buffers busy throughout.

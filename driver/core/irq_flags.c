@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: GPL-2.0
+/*
+ * Reading the interrupt flags a pass handles: READ STATUS when it tells
+ * enough, CANINTF and EFLG when it does not.
+ *
+ * A pass normally starts with READ STATUS (2 bytes): it shows RXnIF, TXnIF
+ * and TXREQ, everything a busy chip raises per frame.  It does not show
+ * ERRIF, WAKIF or MERRF, so the pass reads CANINTF and EFLG instead (4
+ * bytes, same transfer count) when READ STATUS shows nothing although INT
+ * fired, every MCP2510_IRQ_FULL_READ_EVERY passes so an RX flood cannot
+ * starve error reporting, after both RX buffers were seen full or, with
+ * rollover, RXB1 was taken (an overflow may follow), and while the chip
+ * is not error-active (so that a recovery from bus-off is seen at the
+ * next interrupt of any kind).
+ */
+#include "mcp2510_core_priv.h"
+
+#define STATUS_RXIF_ALL	(MCP2510_STATUS_RX0IF | MCP2510_STATUS_RX1IF)
+
+static void status_decode(u8 status, struct irq_flags *f)
+{
+	unsigned int n;
+
+	f->intf = 0;
+	f->txreq = 0;
+	for (n = 0; n < MCP2510_RXB_COUNT; n++)
+		if (status & (n ? MCP2510_STATUS_RX1IF : MCP2510_STATUS_RX0IF))
+			f->intf |= MCP2510_INT_RX(n);
+	for (n = 0; n < MCP2510_TXB_COUNT; n++) {
+		if (status & MCP2510_STATUS_TXIF(n))
+			f->intf |= MCP2510_INT_TX(n);
+		if (status & MCP2510_STATUS_TXREQ(n))
+			f->txreq |= BIT(n);
+	}
+	f->have_txreq = true;
+	f->status = status;
+}
+
+static bool full_read_due(const struct mcp2510_chip *chip)
+{
+	return chip->irq.full_read_next || !chip->irq.passes_to_full_read ||
+	       chip->state != CAN_STATE_ERROR_ACTIVE;
+}
+
+static int flags_read_full(struct mcp2510_chip *chip, struct irq_flags *f)
+{
+	u8 regs[2];
+	int err;
+
+	err = mcp2510_reg_read(chip, MCP2510_REG_CANINTF, regs, sizeof(regs));
+	if (err)
+		return err;
+	f->intf = regs[0];
+	f->eflg = regs[1];
+	f->full = true;
+	chip->irq.full_read_next = false;
+	chip->irq.passes_to_full_read = MCP2510_IRQ_FULL_READ_EVERY;
+	return 0;
+}
+
+/*
+ * MERRF in one-shot mode after a full read without READ STATUS: a frame
+ * may have been dropped (TXREQ gone without TXnIF) and only TXREQ tells, so read
+ * it.  TXnIF comes from the same read, later than CANINTF's: a frame sent
+ * in between is seen sent, not taken for lost.
+ */
+static int flags_read_txreq(struct mcp2510_chip *chip, struct irq_flags *f)
+{
+	struct irq_flags s;
+	u8 status;
+	int err;
+
+	err = mcp2510_read_status(chip, &status);
+	if (err)
+		return err;
+	status_decode(status, &s);
+	f->intf |= s.intf & MCP2510_INT_TX_ALL & chip->inte;
+	f->txreq = s.txreq;
+	f->have_txreq = true;
+	f->status = status;
+	return 0;
+}
+
+int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
+{
+	u8 status;
+	int err;
+
+	memset(f, 0, sizeof(*f));
+	if (full_read_due(chip)) {
+		err = flags_read_full(chip, f);
+		if (!err && chip->ctrlmode & CAN_CTRLMODE_ONE_SHOT &&
+		    f->intf & chip->inte & MCP2510_INT_MERR &&
+		    mcp2510_tx_pending(chip))
+			err = flags_read_txreq(chip, f);
+	} else {
+		chip->irq.passes_to_full_read--;
+		err = mcp2510_read_status(chip, &status);
+		if (err)
+			return err;
+		status_decode(status, f);
+		if (!(f->intf & chip->inte))
+			err = flags_read_full(chip, f);
+	}
+	f->intf &= chip->inte;
+	return err;
+}
