@@ -2,7 +2,7 @@
 /*
  * What SPI costs in time: the arithmetic every harness shares, so that the
  * kernel module, the userspace transport and the cmocka harness charge a
- * transfer the same.  mcp2510_sim.h says what the parameters mean,
+ * transfer the same.  sim_spi_time.h says what the parameters mean,
  * sim_spi_profile.c gives boards' values.
  */
 #include "sim_private.h"

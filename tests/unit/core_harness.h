@@ -75,7 +75,7 @@ struct ch_node {
 struct ch_rig {
 	struct sim_bus bus;
 	/*
-	 * SPI time (off unless a test sets spi.timing): see mcp2510_sim.h.
+	 * SPI time (off unless a test sets spi.timing): see sim_spi_time.h.
 	 * Nodes are serviced one after another, so with several nodes their
 	 * interrupt latencies add up where a real host would overlap them.
 	 */

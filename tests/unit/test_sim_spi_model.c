@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * The SPI controller model's arithmetic (mcp2510_sim.h "SPI time",
+ * The SPI controller model's arithmetic (sim_spi_time.h,
  * sim_spi_profile.c): which transfers spi-bcm2835 polls, runs by interrupt
  * or by DMA, what a transfer and a chip-select period cost, the drawn
  * latencies' median, 99th percentile and tail for a seed, and the board

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * The model's SPI time arithmetic (mcp2510_sim.h, "SPI time"): the clock
+ * The model's SPI time arithmetic (sim_spi_time.h): the clock
  * a transfer runs at, what a period and a message cost, the one bus queue,
  * the interrupt latency, and that with timing off nothing takes time.
  */
