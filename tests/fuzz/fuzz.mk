@@ -38,7 +38,8 @@ FUZZ_RUN_FLAGS := -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
 FUZZ_TARGETS := sim_spi core_hostile frame_text filter_text bittiming
 
 fuzz_sim_spi_SRCS := $(SIM_SRCS) $(FUZZ_DIR)/fuzz_input.c
-fuzz_core_hostile_SRCS := $(CORE_SRCS) $(SIM_SRCS) $(FUZZ_DIR)/fuzz_input.c
+fuzz_core_hostile_SRCS := $(CORE_SRCS) $(SIM_SRCS) $(FUZZ_DIR)/fuzz_input.c \
+			  $(FUZZ_DIR)/fuzz_hostile_chip.c
 fuzz_frame_text_SRCS := userspace/tools/frame_text.c
 fuzz_filter_text_SRCS := $(CORE_SRCS)
 fuzz_bittiming_SRCS := $(CORE_SRCS) $(CORE_USER_SRCS) $(FUZZ_DIR)/fuzz_input.c

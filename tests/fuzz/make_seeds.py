@@ -149,7 +149,7 @@ def sim_seeds():
     write("sim_spi", "wrap-and-power-cycle", s.bytes())
 
 
-# ---- core_hostile (fuzz_core_hostile.c) ---------------------------------
+# ---- core_hostile (fuzz_core_hostile.c, fuzz_hostile.h) -----------------
 (H_HW_RESET, H_SET_MODE, H_START, H_STOP, H_RESTART, H_IRQ, H_IRQ2,
  H_TX_SUBMIT, H_SLEEP, H_BERR, H_DUMP, H_PIN_BF, H_PIN_RTS,
  H_FILTERS, H_PEER, H_WAKE_ARM, H_WAKE_ACK, H_GARBLE) = range(18)
