@@ -179,6 +179,10 @@ int mcp2510_sim_spi_register(struct mcp2510_sim *sim, const char *driver,
 			     int spidev_node);
 void mcp2510_sim_spi_unregister(struct mcp2510_sim *sim);
 
+/* kmod_spi_devices.c */
+int mcp2510_sim_spi_add_devices(struct mcp2510_sim *sim, const char *driver,
+				int spidev_node);
+
 /* kmod_monitor.c */
 void mcp2510_sim_monitor_attach(struct mcp2510_sim *sim);
 extern const struct file_operations mcp2510_sim_monitor_fops;
