@@ -15,8 +15,6 @@
  */
 #include "mcp2510_core_priv.h"
 
-#define STATUS_RXIF_ALL	(MCP2510_STATUS_RX0IF | MCP2510_STATUS_RX1IF)
-
 static void status_decode(u8 status, struct irq_flags *f)
 {
 	unsigned int n;
