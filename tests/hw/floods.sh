@@ -126,7 +126,7 @@ transit() {
 	fi
 }
 
-floods() {
+check_floods() {
 	for rate in $BITRATES; do
 		transit "$rate"
 	done

@@ -1,11 +1,13 @@
 # tests/hw/hw.mk: the hardware test kit (docs/hardware-testing.md).
 #
 #   make hwtest IFACES="can0 can1" [KIT_FRAMES=20000] [KIT_TRANSITS=1000]
-#        [KIT_BITRATES="125000 500000 1000000"] [HWTEST_OUT=DIR]
+#        [KIT_BITRATES="125000 500000 1000000"] [KIT_CHECKS="..."] [HWTEST_OUT=DIR]
 #	runs tests/hw/mcp2510-hwtest on two CAN interfaces of this machine
 #	(root; a board with two chips on one bus), with the kit's programs
 #	(can-flood, can-transit, can-echo, can-dlc from tests/vm/guest)
 #	built first
+#   make hwtest-broken-modules  mcp2510.ko broken on purpose, for the
+#	rig's proof that the kit fails on a broken driver (tests/hw/broken)
 #   make install-hwtest   mcp2510-hwtest into $(DESTDIR)$(PREFIX)/bin, its
 #	scripts and programs (private: generic names) into
 #	$(PREFIX)/lib/mcp2510-hwtest; part of make install-userspace
@@ -28,6 +30,7 @@ hwtest: $(HW_PROGRAMS)
 	PATH="$(HW_BIN):$$PATH" $(if $(KIT_FRAMES),KIT_FRAMES=$(KIT_FRAMES)) \
 		$(if $(KIT_TRANSITS),KIT_TRANSITS=$(KIT_TRANSITS)) \
 		$(if $(KIT_BITRATES),KIT_BITRATES="$(KIT_BITRATES)") \
+		$(if $(KIT_CHECKS),KIT_CHECKS="$(KIT_CHECKS)") \
 		$(HW_DIR)/mcp2510-hwtest $(if $(HWTEST_OUT),-o $(HWTEST_OUT)) $(IFACES)
 
 userspace: $(HW_PROGRAMS)
@@ -54,3 +57,19 @@ hwtest-rig: $(HW_PROGRAMS)
 	@rm -rf $(VM_GUEST_ROOT)
 	@$(MAKE) --no-print-directory install-hwtest DESTDIR=$(VM_GUEST_ROOT) PREFIX=/usr/local >/dev/null
 VMTEST_DEPS += hwtest-rig
+
+# The driver broken on purpose (tests/hw/broken/*.patch), which the kit
+# must find fault with (tests/vm/scenarios/hwtest-kit-broken.sh), for the
+# kernels that scenario runs on: the oldest and the newest series.  A
+# patched copy of the driver's sources per kernel and patch, built where
+# the rig's modules are (tests/vm/kbuild).
+.PHONY: hwtest-broken-modules
+hwtest-broken-modules: modules-deps
+	@set -e; for k in $(filter $(KERNEL_OLDEST) $(KERNEL_NEWEST),$(RIG_KERNELS)); do \
+		$(VM_DIR)/kernel-info $$k kdir >/dev/null 2>&1 || { \
+			echo "hwtest-broken-modules: rig kernel $$k not there yet, not built"; \
+			continue; }; \
+		$(HW_DIR)/broken/build $$k $(wildcard $(HW_DIR)/broken/*.patch); \
+	done
+VMTEST_DEPS += hwtest-broken-modules
+KERNEL_PATCHES += $(wildcard $(HW_DIR)/broken/*.patch)

@@ -1,7 +1,8 @@
 # Helpers for scenario scripts, in the guest at /lib/rig.sh:  . /lib/rig.sh
 # (POSIX sh, busybox ash).  Environment from vm-run: VM_KERNEL (6.1, 6.12,
-# debug or rt), VM_NODES, VM_VARIANT, VM_DRIVER, VM_SIM (1 when the simulated
-# chips are loaded), VM_SIM_PARAMS (--sim-param's NAME=VALUE words).
+# debug or rt), VM_NODES, VM_VARIANT, VM_DRIVER, VM_DRIVER_KO (--module's
+# FILE, default mcp2510.ko), VM_SIM (1 when the simulated chips are
+# loaded), VM_SIM_PARAMS (--sim-param's NAME=VALUE words).
 
 # The helpers below start no process where a shell builtin does: on the
 # debug kernel (KASAN, kmemleak and lockdep at every allocation, under TCG)

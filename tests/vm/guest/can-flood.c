@@ -34,14 +34,11 @@
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
-#include <net/if.h>
 #include <stdio.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
-
-#include <linux/can/raw.h>
 
 #include "flood_count.h"
 
@@ -59,6 +56,8 @@ static void die(const char *what)
 	fprintf(stderr, "can-flood: %s: %s\n", what, strerror(errno));
 	exit(2);
 }
+
+#include "can_socket.h"
 
 static void usage(void)
 {
@@ -142,30 +141,12 @@ static void parse_opts(int argc, char **argv, struct opts *o)
 	}
 }
 
-static int can_socket(const char *ifname)
-{
-	struct sockaddr_can addr = { .can_family = AF_CAN };
-	int s = socket(PF_CAN, SOCK_RAW, CAN_RAW);
-
-	if (s < 0)
-		die("socket");
-	addr.can_ifindex = (int)if_nametoindex(ifname);
-	if (!addr.can_ifindex)
-		die(ifname);
-	if (bind(s, (struct sockaddr *)&addr, sizeof(addr)) < 0)
-		die("bind");
-	return s;
-}
-
 static int run_send(const char *ifname, const struct opts *o)
 {
-	int s = can_socket(ifname);
+	int s = can_socket(ifname, RECEIVE_NONE);
 	long enobufs = 0, stuck_since = 0;
 	uint32_t n = 0;
 
-	/* a sender that receives nothing: no queue to fill */
-	if (setsockopt(s, SOL_CAN_RAW, CAN_RAW_FILTER, NULL, 0) < 0)
-		die("CAN_RAW_FILTER");
 	while (n < o->f.count) {
 		struct can_frame cf = flood_frame(&o->f, n);
 
@@ -223,7 +204,7 @@ static int socket_frame(int s, struct can_frame *cf, uint32_t *drops)
 static void recv_socket(const char *ifname, const struct opts *o,
 			struct flood_count *c, uint32_t *drops)
 {
-	int s = can_socket(ifname), on = 1, size = 8 << 20;
+	int s = can_socket(ifname, RECEIVE_ALL), on = 1, size = 8 << 20;
 	struct can_frame cf;
 	long last;
 

@@ -23,14 +23,11 @@
  */
 #define _GNU_SOURCE
 #include <errno.h>
-#include <net/if.h>
 #include <poll.h>
 #include <stdio.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
-
-#include <linux/can/raw.h>
 
 #include "flood_count.h"
 
@@ -39,6 +36,8 @@ static void die(const char *what)
 	fprintf(stderr, "can-transit: %s: %s\n", what, strerror(errno));
 	exit(2);
 }
+
+#include "can_socket.h"
 
 static void usage(void)
 {
@@ -61,28 +60,6 @@ static unsigned long number(const char *s, int base)
 	if (flood_number(s, base, &v))
 		usage();
 	return v;
-}
-
-/* a raw socket on @ifname that receives @id alone, or nothing (-1) */
-static int can_socket(const char *ifname, int64_t id)
-{
-	struct sockaddr_can addr = { .can_family = AF_CAN };
-	struct can_filter only = { .can_mask = CAN_EFF_FLAG | CAN_RTR_FLAG |
-					       CAN_EFF_MASK };
-	int s = socket(PF_CAN, SOCK_RAW, CAN_RAW);
-
-	if (s < 0)
-		die("socket");
-	only.can_id = id < 0 ? 0 : (canid_t)id;
-	if (setsockopt(s, SOL_CAN_RAW, CAN_RAW_FILTER, &only,
-		       id < 0 ? 0 : sizeof(only)) < 0)
-		die("CAN_RAW_FILTER");
-	addr.can_ifindex = (int)if_nametoindex(ifname);
-	if (!addr.can_ifindex)
-		die(ifname);
-	if (bind(s, (struct sockaddr *)&addr, sizeof(addr)) < 0)
-		die("bind");
-	return s;
 }
 
 /*
@@ -159,7 +136,7 @@ int main(int argc, char **argv)
 	transit = calloc(f.count, sizeof(*transit));
 	if (!transit || flood_count_init(&c, &f))
 		die("calloc");
-	tx = can_socket(argv[1], -1);
+	tx = can_socket(argv[1], RECEIVE_NONE);
 	rx = can_socket(argv[2], f.id);
 
 	for (n = 0; n < f.count; n++) {
