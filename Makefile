@@ -123,14 +123,17 @@ include tests/fuzz/fuzz.mk
 include tests/lint/lint.mk
 # Late: the Debian 13 root it needs is made in the background meanwhile.
 include tests/trixie/trixie.mk
-# Late too: its roots, clones and demos run in the background meanwhile.
-include tests/fresh-root/fresh-root.mk
 include tests/bench/bench.mk
 include tests/matrix/matrix.mk
 
-# Last: the scenario suite on the four rig kernels, so that the debug kernel's
+# Then the scenario suite on the rig kernels, so that the debug kernel's
 # build (tests/vm/vm.mk) has had every other step to overlap with.
 CHECK_STEPS += vmtest
+# Last, the fresh-root check's verdict: its roots, clones and demos run in
+# the background at idle priority from the start, taking what the other
+# steps leave of the cores (vmtest's guests leave some while they wait on
+# simulated bus time), so that no step waits for them before vmtest.
+include tests/fresh-root/fresh-root.mk
 
 check: deps
 	@set -e; check_start=$$(date +%s); for step in $(CHECK_STEPS); do \

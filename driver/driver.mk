@@ -100,13 +100,14 @@ modules:
 # builds with the compiler its headers name (installed when missing: 6.1's
 # gcc-12 on a Debian 13 host), and in the Debian 13 root when the host's C
 # library is too old for its kbuild programs (7.3 on a Debian 12 host).
+# Each kernel's build runs on every core: vmtest waits for these.
 RIG_KERNELS = $(or $(VM_KERNELS),6.1 6.12 rt debug)
 modules-rig: modules-deps
 	@set -e; for k in $(RIG_KERNELS); do \
 		kdir=$$($(TOP)/tests/vm/kernel-info $$k kdir 2>/dev/null) || { \
 			echo "modules-rig: rig kernel $$k not there yet, not built"; \
 			continue; }; \
-		$(TOP)/tests/vm/kbuild $$k $(MAKE) --no-print-directory -C $(TOP) \
+		$(TOP)/tests/vm/kbuild $$k $(MAKE) -j$$(nproc) --no-print-directory -C $(TOP) \
 			modules-rig-one KDIR=$$kdir RIG_KERNEL=$$k; \
 	done
 

@@ -21,7 +21,7 @@
 # priority; fresh-root-await waits for it and gives its verdict.  make
 # check runs the first as its first step, so that the check takes what the
 # other steps leave of the cores (and waits on the network meanwhile), and
-# the second just before vmtest, which leaves no core idle.
+# the second as its last, after vmtest.
 
 FRESH_ROOT := $(TOP)/tests/fresh-root/check
 FRESH_ROOT_SUITES := bookworm trixie

@@ -84,11 +84,12 @@ vmtest-release:
 vmtest-debug:
 	@$(MAKE) --no-print-directory vmtest VM_KERNELS=debug
 
-# make check runs vmtest last (Makefile).  The debug kernel takes some nine
-# minutes of both cores to build, so make check starts that before anything
-# else, in the background at idle priority: it takes what the other steps
-# leave of the cores (the single-threaded ones leave a quarter), and
-# vmtest waits for it.
+# make check runs vmtest after its other steps but the fresh-root verdict
+# (Makefile).  The debug kernel takes some nine minutes of both cores to
+# build, so make check starts that before anything else, in the background
+# at nice 19: it takes what the other steps leave of the cores (the
+# single-threaded ones leave a quarter), ahead of the idle fresh-root
+# check, and vmtest waits for it.
 vm-kernel-debug-background:
 	@$(VM_DIR)/build-debug-kernel --background
 
