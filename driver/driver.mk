@@ -190,7 +190,8 @@ $(CHECKPATCH):
 	touch $@
 
 # Patches of kernel code that other fragments keep (tests/hw/hw.mk's
-# broken builds of the driver), read as patches.
+# broken builds of the driver), read as patches: from standard input, as
+# checkpatch reads a file git tracks as source whatever its name.
 KERNEL_PATCHES :=
 
 # checkpatch exits 1 on findings; anything else means it did not run.
@@ -199,8 +200,10 @@ checkpatch: $(CHECKPATCH)
 		-f $(patsubst $(TOP)/%,%,$(KERNEL_SOURCES)) \
 		> $(CHECKPATCH_DIR)/report.txt; [ $$? -le 1 ]; }
 	@cd $(TOP) && for p in $(patsubst $(TOP)/%,%,$(KERNEL_PATCHES)); do \
-		$(CHECKPATCH) --strict --no-tree --no-signoff --terse --show-types $$p \
-			>> $(CHECKPATCH_DIR)/report.txt; [ $$? -le 1 ] || exit 1; done
+		$(CHECKPATCH) --strict --no-tree --no-signoff --terse --show-types - \
+			<$$p >$(CHECKPATCH_DIR)/patch.txt; [ $$? -le 1 ] || exit 1; \
+		sed "s|^-:|$$p:|" $(CHECKPATCH_DIR)/patch.txt >>$(CHECKPATCH_DIR)/report.txt; \
+	done
 	@if grep -q ': \(ERROR\|WARNING\|CHECK\):' $(CHECKPATCH_DIR)/report.txt; then \
 		grep ': \(ERROR\|WARNING\|CHECK\):' $(CHECKPATCH_DIR)/report.txt; \
 		echo "checkpatch: findings above" >&2; exit 1; fi
