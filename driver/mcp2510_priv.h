@@ -60,7 +60,7 @@ struct mcp2510_watch {
 struct mcp2510_priv {
 	struct can_priv can;		/* first: the CAN core expects it */
 	struct can_rx_offload offload;	/* frames for the stack, in order */
-	/* received frames queued for the stack, under lock (rx.c) */
+	/* received frames queued for the stack less those dropped at close */
 	unsigned long rx_packets;
 	unsigned long rx_bytes;
 	/* receive timestamps (rx.c) */

@@ -61,6 +61,8 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
 	u8 len = cf->len;
 
 	lockdep_assert_held(&priv->lock);
+	/* No length on the wire: it tells the frame from an echo (rx_disable). */
+	can_skb_prv(skb)->frame_len = 0;
 	/* On failure rx-offload has freed the skb: the stack lags too far. */
 	if (can_rx_offload_queue_tail(&priv->offload, skb)) {
 		stats->rx_dropped++;
@@ -166,11 +168,31 @@ void mcp2510_get_stats64(struct net_device *ndev,
 	stats->rx_bytes = READ_ONCE(priv->rx_bytes);
 }
 
-/* Interface down: deliver nothing more, free what is still queued. */
+/*
+ * Interface down: deliver nothing more, drop what is still queued.  The
+ * frames received among it were counted when queued: they never reached
+ * the stack, so they count as dropped instead.  Echoes carry their length
+ * on the wire (can_put_echo_skb()), received frames none.
+ */
 void mcp2510_rx_disable(struct mcp2510_priv *priv)
 {
+	struct net_device_stats *stats = &priv->ndev->stats;
+	const struct can_frame *cf;
+	struct sk_buff *skb;
+
 	can_rx_offload_disable(&priv->offload);
-	skb_queue_purge(&priv->offload.skb_queue);
+	while ((skb = skb_dequeue(&priv->offload.skb_queue))) {
+		cf = (const struct can_frame *)skb->data;
+		if (!(cf->can_id & CAN_ERR_FLAG) &&
+		    !can_skb_prv(skb)->frame_len) {
+			WRITE_ONCE(priv->rx_packets, priv->rx_packets - 1);
+			if (!(cf->can_id & CAN_RTR_FLAG))
+				WRITE_ONCE(priv->rx_bytes,
+					   priv->rx_bytes - cf->len);
+			stats->rx_dropped++;
+		}
+		kfree_skb(skb);
+	}
 }
 
 void mcp2510_rx_del(struct mcp2510_priv *priv)
