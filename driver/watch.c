@@ -39,7 +39,7 @@ static unsigned long mcp2510_watch_delay(const struct mcp2510_priv *priv)
 {
 	const struct mcp2510_watch *w = &priv->watch;
 
-	if (w->polling)
+	if (w->state == MCP2510_WATCH_POLLING)
 		return msecs_to_jiffies(MCP2510_POLL_MS);
 	return msecs_to_jiffies(priv->chip.irq_edge ? MCP2510_WATCH_EDGE_MS :
 				MCP2510_WATCH_MS);
@@ -100,9 +100,9 @@ static void mcp2510_watch_poll(struct mcp2510_priv *priv)
 	 * unless INT fired since the thread last ran: the thread, waiting
 	 * for the chip lock, would have found that work itself.
 	 */
-	if (handled > 0 && !w->polling &&
+	if (handled > 0 && w->state != MCP2510_WATCH_POLLING &&
 	    atomic_read(&w->irqs_fired) == w->irqs_seen)
-		w->missed_irqs++;
+		w->missed_interrupts++;
 }
 
 /* Give the line another chance once the backoff is over. */
@@ -110,9 +110,10 @@ static void mcp2510_watch_end_polling(struct mcp2510_priv *priv)
 {
 	struct mcp2510_watch *w = &priv->watch;
 
-	if (!w->polling || time_before(jiffies, w->poll_until))
+	if (w->state != MCP2510_WATCH_POLLING ||
+	    time_before(jiffies, w->poll_until))
 		return;
-	w->polling = false;
+	w->state = MCP2510_WATCH_IRQ_BACK;
 	w->irq_back_at = jiffies;
 	enable_irq(priv->spi->irq);
 }
@@ -122,11 +123,11 @@ static void mcp2510_watch_end_storm(struct mcp2510_priv *priv)
 {
 	struct mcp2510_watch *w = &priv->watch;
 
-	if (!w->storming || w->polling ||
+	if (w->state != MCP2510_WATCH_IRQ_BACK ||
 	    time_before(jiffies, w->irq_back_at +
 			msecs_to_jiffies(MCP2510_STORM_GAP_MS)))
 		return;
-	w->storming = false;
+	w->state = MCP2510_WATCH_IRQ;
 	netdev_info(priv->ndev, "INT quiet again: back to interrupts\n");
 }
 
@@ -139,14 +140,14 @@ static void mcp2510_watch_work(struct work_struct *work)
 	unsigned long delay;
 
 	mcp2510_lock(priv);
-	if (!w->running) {
+	if (w->state == MCP2510_WATCH_STOPPED) {
 		mcp2510_unlock(priv);
 		return;
 	}
 	mcp2510_watch_health(priv);
-	if (w->polling || priv->chip.irq_edge)
+	if (w->state == MCP2510_WATCH_POLLING || priv->chip.irq_edge)
 		mcp2510_watch_poll(priv);
-	if (priv->halt_requested)
+	if (mcp2510_dev_state(priv) == MCP2510_DEV_BUS_OFF)
 		mcp2510_halt_locked(priv);
 	mcp2510_watch_end_polling(priv);
 	mcp2510_watch_end_storm(priv);
@@ -168,19 +169,19 @@ void mcp2510_watch_storm(struct mcp2510_priv *priv)
 	bool same;
 
 	lockdep_assert_held(&priv->lock);
-	if (!w->running || w->polling)
+	if (w->state == MCP2510_WATCH_STOPPED ||
+	    w->state == MCP2510_WATCH_POLLING)
 		return;
 	disable_irq_nosync(priv->spi->irq);
-	w->polling = true;
 
-	same = w->storming &&
+	same = w->state == MCP2510_WATCH_IRQ_BACK &&
 	       time_before(jiffies, w->irq_back_at +
 			   msecs_to_jiffies(MCP2510_STORM_GAP_MS));
+	w->state = MCP2510_WATCH_POLLING;
 	if (same) {
 		w->backoff_ms = min(2 * w->backoff_ms, MCP2510_BACKOFF_MAX_MS);
 	} else {
 		w->backoff_ms = MCP2510_BACKOFF_MIN_MS;
-		w->storming = true;
 		w->irq_storms++;
 		if (net_ratelimit())
 			netdev_warn(priv->ndev,
@@ -201,9 +202,7 @@ void mcp2510_watch_start(struct mcp2510_priv *priv)
 	struct mcp2510_watch *w = &priv->watch;
 
 	mcp2510_lock(priv);
-	w->running = true;
-	w->polling = false;
-	w->storming = false;
+	w->state = MCP2510_WATCH_IRQ;
 	w->recovering = false;
 	w->irqs_seen = atomic_read(&w->irqs_fired);
 	mcp2510_unlock(priv);
@@ -218,9 +217,8 @@ void mcp2510_watch_stop(struct mcp2510_priv *priv)
 	bool polling;
 
 	mcp2510_lock(priv);
-	w->running = false;
-	polling = w->polling;
-	w->polling = false;
+	polling = w->state == MCP2510_WATCH_POLLING;
+	w->state = MCP2510_WATCH_STOPPED;
 	mcp2510_unlock(priv);
 
 	cancel_delayed_work_sync(&w->work);
