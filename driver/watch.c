@@ -1,22 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * The watch: a delayed work that looks after the chip while the interface
- * is up, for the failures the INT line cannot report.
- *
- * - Health: once a second the chip must still hold what was programmed.
- *   A chip that reset itself raises no interrupt ever again (CANINTE is
- *   0), so only a look at its registers tells; it is then programmed
- *   again with the same settings, giving up the frames in its buffers.
- * - Interrupt storms: when the IRQ thread finds INT asserted with nothing
- *   to handle, or cannot read the chip at all (SPI failing while a level
- *   INT stays asserted), over and over, it disables the line and the
- *   watch polls the chip instead, every MCP2510_POLL_MS, for a backoff
- *   period.  Then the line is tried again; a storm that goes on doubles
- *   the backoff.
- * - Missed edges: on an edge-triggered line an edge lost while INT was
- *   already low leaves INT low for good and no further edge comes.  The
- *   watch runs the interrupt loop every MCP2510_WATCH_EDGE_MS, which
- *   empties the chip and lets INT go high, so the next event is an edge.
+ * is up, for what the INT line cannot report.  Each tick checks that the
+ * chip still holds what was programmed (a chip that reset itself never
+ * raises INT again) and programs it again if not.  Through an interrupt
+ * storm the line is disabled and the work polls the chip instead, for a
+ * backoff that doubles while the storm goes on.  On an edge-triggered
+ * line each tick also runs the interrupt loop: an edge lost while INT
+ * was low would leave INT low for good.  docs/driver-internals.md has
+ * the figures behind the periods.
  */
 #include <linux/can/dev.h>
 #include <linux/interrupt.h>
@@ -27,7 +19,17 @@
 
 #include "mcp2510_priv.h"
 
+/*
+ * Measured on 6.1 in the rig (idle SPI cost; a chip reset to back in
+ * service, mean of five): 1 s costs 2 transfers a second and takes
+ * 0.76 s; 200 ms, 10 a second for 0.18 s; 5 s, 4.4 s.
+ */
 #define MCP2510_WATCH_MS	1000
+/*
+ * The frame behind a lost edge waited 20 ms (mean of ten, 38 at most)
+ * for 69 transfers a second; 10 ms: 6.5 ms for 245; 200 ms: 101 ms for
+ * 20, and a flood with lost edges lost 1987 of 2000 frames.
+ */
 #define MCP2510_WATCH_EDGE_MS	50
 #define MCP2510_POLL_MS		10
 #define MCP2510_BACKOFF_MIN_MS	100
