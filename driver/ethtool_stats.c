@@ -47,7 +47,7 @@ void mcp2510_get_ethtool_stats(struct net_device *ndev,
 	mcp2510_lock(priv);
 	data[MCP2510_STAT_IRQ_STORMS] = priv->watch.irq_storms;
 	data[MCP2510_STAT_IRQ_LOOP_BOUND] = priv->chip.counters.irq_loop_bound;
-	data[MCP2510_STAT_MISSED_IRQS] = priv->watch.missed_irqs;
+	data[MCP2510_STAT_MISSED_IRQS] = priv->watch.missed_interrupts;
 	data[MCP2510_STAT_RECOVERIES] = priv->chip.counters.recoveries;
 	mcp2510_unlock(priv);
 }

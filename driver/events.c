@@ -60,8 +60,9 @@ static void mcp2510_event_state(void *ctx, enum can_state state,
 	enum can_state tx_state, rx_state;
 
 	/* A chip back from bus-off by itself has nothing left to halt. */
-	if (state != CAN_STATE_BUS_OFF)
-		priv->halt_requested = false;
+	if (state != CAN_STATE_BUS_OFF &&
+	    mcp2510_dev_state(priv) == MCP2510_DEV_BUS_OFF)
+		mcp2510_dev_enter(priv, MCP2510_DEV_RUNNING);
 	if (state == priv->can.state)
 		return;
 
@@ -74,7 +75,8 @@ static void mcp2510_event_state(void *ctx, enum can_state state,
 	 * mcp2510_halt_locked()): no restart can find it busy.
 	 */
 	if (state == CAN_STATE_BUS_OFF) {
-		priv->halt_requested = true;
+		if (mcp2510_dev_state(priv) == MCP2510_DEV_RUNNING)
+			mcp2510_dev_enter(priv, MCP2510_DEV_BUS_OFF);
 		return;
 	}
 

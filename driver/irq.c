@@ -46,13 +46,14 @@ static bool mcp2510_irq_storm(struct mcp2510_priv *priv, int handled)
 
 	if (handled > 0)
 		return false;
-	if (time_after(jiffies, w->empty_since + HZ)) {
-		w->empty_since = jiffies;
-		w->empty_irqs = 0;
+	if (time_after(jiffies, w->unhandled_since + HZ)) {
+		w->unhandled_since = jiffies;
+		w->unhandled_irqs = 0;
 	}
-	if (handled != -EAGAIN && ++w->empty_irqs < MCP2510_STORM_EMPTY_IRQS)
+	if (handled != -EAGAIN &&
+	    ++w->unhandled_irqs < MCP2510_STORM_UNHANDLED_IRQS)
 		return false;
-	w->empty_irqs = 0;
+	w->unhandled_irqs = 0;
 	mcp2510_watch_storm(priv);
 	return true;
 }
@@ -82,7 +83,7 @@ irqreturn_t mcp2510_irq_thread(int irq, void *data)
 	priv->watch.irqs_seen = atomic_read(&priv->watch.irqs_fired);
 	handled = mcp2510_irq_handle(&priv->chip);
 	/* Stopping the chip from inside the core's pass is not allowed. */
-	if (priv->halt_requested)
+	if (mcp2510_dev_state(priv) == MCP2510_DEV_BUS_OFF)
 		mcp2510_halt_locked(priv);
 	storm = mcp2510_irq_storm(priv, handled);
 	mcp2510_rx_deliver(priv);

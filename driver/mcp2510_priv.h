@@ -34,33 +34,50 @@
 struct regulator;
 struct clk;
 
-/* IRQ thread calls finding nothing, or failing, within a second: a storm. */
-#define MCP2510_STORM_EMPTY_IRQS	32
+/* state.c: the device's states; the transitions are listed there */
+enum mcp2510_dev_state {
+	MCP2510_DEV_OFF,	/* no supply or oscillator */
+	MCP2510_DEV_POWERED,	/* INT free; the chip asleep once reset */
+	MCP2510_DEV_WAKE_ARMED,	/* suspended asleep, INT a wakeup irq */
+	MCP2510_DEV_RUNNING,	/* INT requested, the chip on the bus */
+	MCP2510_DEV_BUS_OFF,	/* bus-off reported, the halt not through yet */
+	MCP2510_DEV_HALTED,	/* stopped at bus-off until a restart */
+};
+
+/* IRQ thread calls handling nothing, or failing, within a second: a storm. */
+#define MCP2510_STORM_UNHANDLED_IRQS	32
+
+/* watch.c: what the watch does about the INT line */
+enum mcp2510_watch_state {
+	MCP2510_WATCH_STOPPED,		/* interface down: the work ends */
+	MCP2510_WATCH_IRQ,		/* INT in use */
+	MCP2510_WATCH_POLLING,		/* a storm: INT disabled, the work polls */
+	MCP2510_WATCH_IRQ_BACK,		/* INT back after a storm, not yet quiet */
+};
 
 /* watch.c: health checks, and polling through storms and missed edges */
 struct mcp2510_watch {
 	struct delayed_work work;
 	/* under the chip lock */
-	bool running;			/* the interface is up: re-arm */
-	bool polling;			/* INT disabled, the work polls the chip */
-	bool storming;			/* reported, not yet reported over */
-	bool recovering;		/* failed a health check, not back yet */
+	enum mcp2510_watch_state state;
+	/* failed a health check, not back yet: whatever INT does meanwhile */
+	bool recovering;
 	unsigned int backoff_ms;	/* polling time before INT is retried */
 	unsigned long poll_until;	/* jiffies */
 	unsigned long irq_back_at;	/* jiffies: INT enabled again */
-	unsigned long empty_since;	/* jiffies: start of the counting */
-	unsigned int empty_irqs;	/* calls that found nothing or failed */
+	unsigned long unhandled_since;	/* jiffies: start of the counting */
+	unsigned int unhandled_irqs;	/* calls that handled nothing or failed */
 	atomic_t irqs_fired;		/* hard IRQs, ever */
 	int irqs_seen;			/* irqs_fired when the thread last ran */
-	/* ethtool -S */
-	u64 irq_storms;
-	u64 missed_irqs;		/* work found by polling an edge line */
+	/* ethtool -S, under the names exported */
+	u64 irq_storms;			/* storms, however long each polled */
+	u64 missed_interrupts;		/* work found by polling an edge line */
 };
 
 struct mcp2510_priv {
 	struct can_priv can;		/* first: the CAN core expects it */
 	struct can_rx_offload offload;	/* frames for the stack, in order */
-	/* received frames queued for the stack, under lock (rx.c) */
+	/* received frames queued for the stack less those dropped at close */
 	unsigned long rx_packets;
 	unsigned long rx_bytes;
 	/* receive timestamps (rx.c) */
@@ -84,9 +101,6 @@ struct mcp2510_priv {
 	u8 *spi_tx;			/* DMA-safe bounce buffers, under lock */
 	u8 *spi_rx;
 	unsigned long irq_flags;	/* trigger type for request_irq */
-	/* bus-off without restart-ms: the chip sleeps until a restart */
-	bool halted;
-	bool halt_requested;		/* set by the state event, under lock */
 
 	/*
 	 * TX: start_xmit queues skbs here (it may not sleep) and the work
@@ -115,10 +129,13 @@ struct mcp2510_priv {
 
 	struct mcp2510_watch watch;
 
-	bool powered;			/* vdd and oscillator on */
-	bool hw_running;		/* IRQ requested, chip started */
-	bool suspended_running;		/* the interface was up at suspend */
-	bool wake_armed;		/* asleep for wake-on-CAN, INT a wakeup irq */
+	enum mcp2510_dev_state state;	/* state.c: through its functions */
+	/*
+	 * The interface was up at suspend: what resume brings back.  Not a
+	 * state of the device, which a failed resume may leave OFF with the
+	 * interface up.
+	 */
+	bool suspended_running;
 };
 
 /* spi.c: the core's transport and the chip lock */
@@ -191,6 +208,11 @@ void mcp2510_gpio_restore(struct mcp2510_priv *priv);
 
 /* ethtool.c */
 extern const struct ethtool_ops mcp2510_ethtool_ops;
+
+/* state.c */
+enum mcp2510_dev_state mcp2510_dev_state(const struct mcp2510_priv *priv);
+bool mcp2510_dev_running(const struct mcp2510_priv *priv);
+void mcp2510_dev_enter(struct mcp2510_priv *priv, enum mcp2510_dev_state to);
 
 /* pm.c */
 extern const struct dev_pm_ops mcp2510_pm_ops;

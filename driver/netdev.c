@@ -51,8 +51,7 @@ static int mcp2510_chip_start_locked(struct mcp2510_priv *priv)
 		return ret;
 
 	priv->can.state = CAN_STATE_ERROR_ACTIVE;
-	priv->halted = false;
-	priv->halt_requested = false;
+	mcp2510_dev_enter(priv, MCP2510_DEV_RUNNING);
 	/* The reset inside start returned the RXnBF pins to their defaults. */
 	mcp2510_gpio_restore(priv);
 	return 0;
@@ -78,7 +77,7 @@ static int mcp2510_power_again(struct mcp2510_priv *priv)
 {
 	int ret;
 
-	if (priv->powered)
+	if (mcp2510_dev_state(priv) != MCP2510_DEV_OFF)
 		return 0;
 	ret = mcp2510_power_on(priv);
 	if (ret) {
@@ -117,8 +116,6 @@ int mcp2510_hw_up(struct mcp2510_priv *priv)
 	ret = mcp2510_chip_start_locked(priv);
 	if (ret)
 		mcp2510_stop(&priv->chip);
-	else
-		priv->hw_running = true;
 	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 	if (ret)
@@ -141,22 +138,22 @@ out_disable_rx:
  */
 void mcp2510_hw_down(struct mcp2510_priv *priv)
 {
+	bool running = mcp2510_dev_running(priv);
+
 	/* No more interrupts or loads: the chip is ours alone from here. */
-	if (priv->hw_running) {
+	if (running) {
 		mcp2510_watch_stop(priv);
 		free_irq(priv->spi->irq, priv);
 	}
 	cancel_work_sync(&priv->tx_work);
 	mcp2510_tx_flush(priv);
-	if (!priv->hw_running)
+	if (!running)
 		return;
 
 	mcp2510_lock(priv);
-	if (!priv->halted)
+	if (mcp2510_dev_state(priv) != MCP2510_DEV_HALTED)
 		mcp2510_stop(&priv->chip);
-	priv->halted = false;
-	priv->halt_requested = false;
-	priv->hw_running = false;
+	mcp2510_dev_enter(priv, MCP2510_DEV_POWERED);
 	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
 
@@ -184,8 +181,7 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv)
 				 ERR_PTR(ret));
 		return;
 	}
-	priv->halt_requested = false;
-	priv->halted = true;
+	mcp2510_dev_enter(priv, MCP2510_DEV_HALTED);
 	/* Bus-off is the controller's as a whole: no direction to blame. */
 	can_change_state(priv->ndev, NULL, CAN_STATE_BUS_OFF, CAN_STATE_BUS_OFF);
 	can_bus_off(priv->ndev);
@@ -234,7 +230,7 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 	 * everything programmed again.
 	 */
 	mcp2510_lock(priv);
-	if (priv->hw_running && priv->halted)
+	if (mcp2510_dev_state(priv) == MCP2510_DEV_HALTED)
 		ret = mcp2510_restart_halted_locked(priv);
 	else
 		ret = -ENETDOWN;

@@ -26,7 +26,7 @@ int mcp2510_power_on(struct mcp2510_priv *priv)
 {
 	int ret;
 
-	if (priv->powered)
+	if (mcp2510_dev_state(priv) != MCP2510_DEV_OFF)
 		return 0;
 	if (priv->vdd) {
 		ret = regulator_enable(priv->vdd);
@@ -36,7 +36,7 @@ int mcp2510_power_on(struct mcp2510_priv *priv)
 	ret = clk_prepare_enable(priv->clk);
 	if (ret)
 		goto out_vdd_off;
-	priv->powered = true;
+	mcp2510_dev_enter(priv, MCP2510_DEV_POWERED);
 	return 0;
 
 out_vdd_off:
@@ -47,12 +47,12 @@ out_vdd_off:
 
 void mcp2510_power_off(struct mcp2510_priv *priv)
 {
-	if (!priv->powered)
+	if (mcp2510_dev_state(priv) == MCP2510_DEV_OFF)
 		return;
 	clk_disable_unprepare(priv->clk);
 	if (priv->vdd)
 		regulator_disable(priv->vdd);
-	priv->powered = false;
+	mcp2510_dev_enter(priv, MCP2510_DEV_OFF);
 }
 
 /*
@@ -111,7 +111,7 @@ static int mcp2510_wake_enable(struct mcp2510_priv *priv)
 	ret = enable_irq_wake(spi->irq);
 	if (ret)
 		goto out_free_irq;
-	priv->wake_armed = true;
+	mcp2510_dev_enter(priv, MCP2510_DEV_WAKE_ARMED);
 	return 0;
 
 out_free_irq:
@@ -124,13 +124,13 @@ out_xceiver_off:
 
 static void mcp2510_wake_disable(struct mcp2510_priv *priv)
 {
-	if (!priv->wake_armed)
+	if (mcp2510_dev_state(priv) != MCP2510_DEV_WAKE_ARMED)
 		return;
 	disable_irq_wake(priv->spi->irq);
 	free_irq(priv->spi->irq, priv);
 	if (priv->xceiver)
 		regulator_disable(priv->xceiver);
-	priv->wake_armed = false;
+	mcp2510_dev_enter(priv, MCP2510_DEV_POWERED);
 }
 
 static int mcp2510_suspend(struct device *dev)

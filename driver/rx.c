@@ -1,41 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * Receive path, on can-dev's rx-offload in manual mode.  Whoever runs
- * the chip under its lock (the IRQ thread, the watch, stopping and
- * restarting) queues received frames, error frames and the echoes of
- * sent frames, and hands the batch to rx-offload's NAPI poll before
- * releasing the lock.  So they reach the stack in exactly the order the
- * chip produced them whichever CPU each pass ran on; netif_rx() would
- * use the backlog of the current CPU and could reorder frames read on
- * different CPUs.  The echo helpers are can-dev's own: an echo goes to
- * the local sockets only when the sender asked for loopback, as af_can
- * expects of IFF_ECHO drivers.
- *
- * rx-offload's poll counts every frame it delivers as received, echoes
- * included; echoes are the driver's sent traffic, so the interface
- * reports the driver's own count of received frames instead.
- *
- * Receive timestamps.  The stack would stamp a frame when NAPI hands it
- * on, after the thread was scheduled and read the chip; the time INT
- * fired is much closer to the end of the frame.  It is a time no frame
- * read later may carry, though: one that came after INT fired would be
- * stamped before it ended.  The rule, where "now" is taken in each pass
- * of the interrupt loop right after it read the flags:
- * - the first frame of a pass gets the time INT fired when the core
- *   says that frame was in the chip whenever INT was asserted since the
- *   pass before (rx_pass), and INT fired since that pass;
- * - every other frame, and every frame of a pass with no such
- *   interrupt (a later pass of an edge-triggered loop, polling), gets
- *   that pass's "now": it was in the chip when the flags were read;
- * - error frames found by a pass get its "now" too, and so do the echoes
- *   of the frames whose completion it read: stamped by the stack when
- *   NAPI hands them on, they would carry a later time than frames read
- *   after them in the same hold of the chip lock.
- * So no frame is stamped before it ended, and stamps never decrease in
- * the order frames are queued: the queue, in the chip's order, is in
- * timestamp order without sorting it.  The stamps are the host's clock
- * (CLOCK_REALTIME in skb->tstamp, what SO_TIMESTAMP and software receive
- * stamping read), not the chip's: the chip has none.
+ * the chip under its lock queues received frames, error frames and
+ * echoes, and hands the batch to NAPI before releasing the lock: the
+ * stack sees the chip's order whichever CPU each pass ran on.  The
+ * interface reports the driver's own count of received frames, as
+ * rx-offload counts echoes too.  Frames are stamped with the time INT
+ * fired or the time their pass read the flags, never before their end
+ * and never decreasing in queue order.  The rules:
+ * docs/driver-internals.md.
  */
 #include <linux/can/dev.h>
 #include <linux/can/rx-offload.h>
@@ -61,6 +34,8 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
 	u8 len = cf->len;
 
 	lockdep_assert_held(&priv->lock);
+	/* No length on the wire: it tells the frame from an echo (rx_disable). */
+	can_skb_prv(skb)->frame_len = 0;
 	/* On failure rx-offload has freed the skb: the stack lags too far. */
 	if (can_rx_offload_queue_tail(&priv->offload, skb)) {
 		stats->rx_dropped++;
@@ -166,11 +141,31 @@ void mcp2510_get_stats64(struct net_device *ndev,
 	stats->rx_bytes = READ_ONCE(priv->rx_bytes);
 }
 
-/* Interface down: deliver nothing more, free what is still queued. */
+/*
+ * Interface down: deliver nothing more, drop what is still queued.  The
+ * frames received among it were counted when queued: they never reached
+ * the stack, so they count as dropped instead.  Echoes carry their length
+ * on the wire (can_put_echo_skb()), received frames none.
+ */
 void mcp2510_rx_disable(struct mcp2510_priv *priv)
 {
+	struct net_device_stats *stats = &priv->ndev->stats;
+	const struct can_frame *cf;
+	struct sk_buff *skb;
+
 	can_rx_offload_disable(&priv->offload);
-	skb_queue_purge(&priv->offload.skb_queue);
+	while ((skb = skb_dequeue(&priv->offload.skb_queue))) {
+		cf = (const struct can_frame *)skb->data;
+		if (!(cf->can_id & CAN_ERR_FLAG) &&
+		    !can_skb_prv(skb)->frame_len) {
+			WRITE_ONCE(priv->rx_packets, priv->rx_packets - 1);
+			if (!(cf->can_id & CAN_RTR_FLAG))
+				WRITE_ONCE(priv->rx_bytes,
+					   priv->rx_bytes - cf->len);
+			stats->rx_dropped++;
+		}
+		kfree_skb(skb);
+	}
 }
 
 void mcp2510_rx_del(struct mcp2510_priv *priv)

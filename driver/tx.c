@@ -196,7 +196,9 @@ static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb,
 	int slot;
 
 	lockdep_assert_held(&priv->lock);
-	if (priv->halted || !priv->hw_running)
+	/* A chip whose bus-off is not halted yet may still send. */
+	if (mcp2510_dev_state(priv) != MCP2510_DEV_RUNNING &&
+	    mcp2510_dev_state(priv) != MCP2510_DEV_BUS_OFF)
 		return -ENETDOWN;
 
 	slot = mcp2510_tx_submit(&priv->chip, cf);

@@ -1,53 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
- * The ordered three-buffer transmit scheduler.
- *
- * SocketCAN expects frames to leave in the order they were queued, but the
- * chip does not know that order: among the buffers with TXREQ set it sends
- * the one with the highest TXBnCTRL.TXP first and, on equal TXP, the one
- * with the higher buffer number.  So every buffer holds a key
- *
- *	key = TXP * 3 + buffer number		(0 .. 11, higher goes first)
- *
- * and a new frame must get a key below the key of every frame still
- * pending: then the chip's choice is always the oldest frame.  Each new
- * frame takes the highest such key any free buffer can have, so the keys
- * walk down by about one per frame while all three buffers stay busy.
- *
- * When no free buffer has a key left below the pending ones, the new
- * frame is staged: loaded with the top key its buffer can have below the
- * frames staged before it, but not requested.  When the last pending
- * frame is gone, one RTS requests every staged frame at once and the keys
- * start again from the top.  This leaves the bus idle once about every
- * nine frames of a continuous stream, for as long as the interrupt takes.
- *
- * Why not raise the TXP of the pending frames instead (fewer idle bus
- * times)?  The data sheets want TXREQ clear before a transmit buffer is
- * written (DS21801 section 3, AN739 "The Transmit Buffers": a buffer
- * "cannot be modified" while pending or sending), and they count TXBnCTRL
- * as the first byte of the 14-byte buffer.  Yet a pending frame is
- * aborted by clearing TXREQ in that same register (register 3-1), so the
- * rule cannot cover every TXBnCTRL write, and nothing says whether a TXP
- * write to a pending buffer takes effect, is ignored, or disturbs the
- * arbitration in progress.  The driver relies only on what is certain:
- * it writes a buffer, TXBnCTRL included, only while its TXREQ is clear,
- * and clears TXREQ (BIT MODIFY of that bit alone) only to abort.  The
- * chip model ignores TXP writes to a pending buffer by default, takes
- * them with sim_chip_faults.txp_writable_while_pending, and counts
- * them either way (sim_counters.tx_pending_writes).
- *
- * An RTS whose transfer fails may still have reached the chip, which
- * then sends the frame.  READ STATUS tells: TXREQ or TXnIF set means the
- * request was latched and the frame counts as sent; both clear, that it
- * was not.  When even that read fails the buffer is "unsure" and is not
- * used again until a READ STATUS shows its TXREQ clear; loading a frame
- * into it could otherwise write a pending buffer (and with LOAD TX
- * BUFFER, have the old frame sent in place of the new one).  A failed
- * load cannot request anything: it writes TXREQ as 0 or not at all.
- *
- * Completions are reported in queue order too: a buffer that finished
- * before an older one (possible only if the older one was lost) waits in
- * tx.done until the older one is accounted for.
+ * The ordered three-buffer transmit scheduler.  The chip sends the
+ * pending buffer with the highest key (TXP * 3 + buffer number), so each
+ * new frame gets a key below every pending frame's; when none is left it
+ * is staged and requested with the others once the pending ones are gone.
+ * A buffer is written only while its TXREQ is clear.  An RTS whose
+ * transfer failed leaves the buffer "unsure" until READ STATUS tells.
+ * Completions are reported in queue order.  Why, and what it is worth
+ * against one buffer (95% of the bus against 27% in make bench at
+ * 1 Mbit/s): docs/driver-internals.md.
  */
 #include "mcp2510_core_priv.h"
 

@@ -262,6 +262,14 @@ static void ch_service_all(struct ch_rig *rig)
 	}
 }
 
+const struct sim_spi_timing ch_pi_like = {
+	.enabled = true,
+	.msg_ns = 10000,
+	.cs_setup_ns = 100,
+	.cs_hold_ns = 100,
+	.irq_latency_ns = 20000,
+};
+
 bool ch_step(struct ch_rig *rig)
 {
 	u64 next = sim_bus_next_event(&rig->bus);

@@ -89,6 +89,9 @@ struct ch_spi_mark {
 	u64 bytes, transfers;
 };
 
+/* SPI time of a fast host: 10 us a message, 20 us to the handler */
+extern const struct sim_spi_timing ch_pi_like;
+
 /* Allocates (test_calloc) a bus with @n nodes of @variant, not started. */
 struct ch_rig *ch_rig_new(unsigned int n, enum mcp2510_model model);
 void ch_rig_free(struct ch_rig *rig);

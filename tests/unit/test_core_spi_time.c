@@ -24,14 +24,6 @@
 #define FRAME_BITS_MIN	111
 #define FRAME_BITS_MAX	135
 
-/* a fast host: 10 us a message, 20 us to the handler */
-static const struct sim_spi_timing pi_like = {
-	.enabled = true,
-	.msg_ns = 10000,
-	.cs_setup_ns = 100,
-	.cs_hold_ns = 100,
-	.irq_latency_ns = 20000,
-};
 
 struct flood_result {
 	struct ch_order order;	/* the flood's frames as received */
@@ -122,14 +114,14 @@ static void assert_flood_was_real(const struct flood_result *res)
 	assert_true(res->elapsed_ns >= (u64)FLOOD_FRAMES * FRAME_BITS_MIN * 1000);
 	assert_true(res->elapsed_ns <= (u64)FLOOD_FRAMES * FRAME_BITS_MAX * 1000);
 	/* at least the message overhead of one transfer per frame */
-	assert_true(res->busy_ns >= (u64)FLOOD_FRAMES * pi_like.msg_ns);
+	assert_true(res->busy_ns >= (u64)FLOOD_FRAMES * ch_pi_like.msg_ns);
 }
 
 static void zero_loss(enum mcp2510_model model)
 {
 	struct flood_result res;
 
-	flood(model, &pi_like, &res);
+	flood(model, &ch_pi_like, &res);
 	assert_flood_was_real(&res);
 	assert_int_equal(res.order.received, FLOOD_FRAMES);
 	assert_int_equal(res.order.out_of_order, 0);
@@ -157,7 +149,7 @@ static void test_flood_zero_loss_mcp2515(void **state)
  */
 static void test_slow_host_loses_frames(void **state)
 {
-	struct sim_spi_timing slow = pi_like;
+	struct sim_spi_timing slow = ch_pi_like;
 	struct flood_result res;
 
 	(void)state;
@@ -188,7 +180,7 @@ static u32 stream(enum mcp2510_model model, u32 bitrate, u32 n, u32 *lost)
 	rig->node[1].ev.on_rx = count_rx;
 	for (i = 0; i < 2; i++)
 		assert_int_equal(ch_start(&rig->node[i], bitrate, 0), 0);
-	rig->spi.timing = pi_like;
+	rig->spi.timing = ch_pi_like;
 	while (rig->node[0].ev.tx_done_count < n) {
 		while (submitted < n && mcp2510_tx_free(&rig->node[0].core)) {
 			struct can_frame cf = ch_frame(0x100, 8, submitted);
@@ -240,10 +232,10 @@ static void test_off_is_instant(void **state)
 	assert_int_equal(sim_bus_now(&rig->bus), before);
 	assert_int_equal(sim_chip_counters(&node->sim)->spi_busy_ns, 0);
 
-	rig->spi.timing = pi_like;
+	rig->spi.timing = ch_pi_like;
 	assert_int_equal(mcp2510_irq_handle(&node->core), 0);
-	assert_true(sim_bus_now(&rig->bus) >= before + pi_like.msg_ns);
-	assert_true(sim_chip_counters(&node->sim)->spi_busy_ns >= pi_like.msg_ns);
+	assert_true(sim_bus_now(&rig->bus) >= before + ch_pi_like.msg_ns);
+	assert_true(sim_chip_counters(&node->sim)->spi_busy_ns >= ch_pi_like.msg_ns);
 	ch_rig_free(rig);
 }
 
