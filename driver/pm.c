@@ -85,12 +85,17 @@ static irqreturn_t mcp2510_wake_irq_thread(int irq, void *data)
 	return IRQ_HANDLED;
 }
 
-/* After mcp2510_hw_down(): the chip is stopped, asleep and powered. */
+/*
+ * After mcp2510_hw_down(): the chip is stopped and asleep, and powered
+ * unless the last resume could not power it (then there is nothing to arm).
+ */
 static int mcp2510_wake_enable(struct mcp2510_priv *priv)
 {
 	struct spi_device *spi = priv->spi;
 	int ret;
 
+	if (mcp2510_dev_state(priv) != MCP2510_DEV_POWERED)
+		return -ENODEV;
 	/* The transceiver must pass bus activity on to RXCAN. */
 	if (priv->xceiver) {
 		ret = regulator_enable(priv->xceiver);
