@@ -82,6 +82,35 @@ class Lossless(unittest.TestCase):
             self.assertEqual(figures.max_lossless(runs), 125000, damage)
 
 
+class Search(unittest.TestCase):
+    """The RX search's probes and full floods."""
+
+    def probe(self, rate, **kw):
+        return flood("rx-probe", rate, **kw).replace("frames=1000", "frames=200")
+
+    def test_a_lossy_probe_decides_its_rate(self):
+        fig = figures.figures(parse(run_lines(rx_lines=[
+            self.probe(1000000, lost=3), self.probe(500000), flood("rx", 500000)])))
+        self.assertEqual(fig["rx_max_lossless_bitrate"], 500000)
+        self.assertEqual(fig["rx_frames"], {"1000000": 200, "500000": 1000})
+        self.assertEqual(fig["rx_loss"]["1000000"], 0.015)
+        self.assertEqual(fig["missing"], [])
+
+    def test_a_lossless_probe_claims_nothing_without_its_flood(self):
+        fig = figures.figures(parse(run_lines(rx_lines=[
+            self.probe(500000), flood("rx", 500000, lost=1), self.probe(250000),
+            flood("rx", 250000)])))
+        self.assertEqual(fig["rx_max_lossless_bitrate"], 250000)
+        self.assertEqual(fig["rx_frames"]["500000"], 1000)
+        self.assertEqual(fig["rx_loss_bound_95"]["250000"], 0.003)
+
+    def test_a_stalled_probe_leaves_no_lossless_rate(self):
+        fig = figures.figures(parse(run_lines(rx_lines=[
+            self.probe(1000000, stalls=1), "bench: rx-search-incomplete"])))
+        self.assertIsNone(fig["rx_max_lossless_bitrate"])
+        self.assertIn("rx-probe 1000000", fig["missing"])
+
+
 class Stalls(unittest.TestCase):
     def test_the_last_clean_try_is_kept(self):
         fig = figures.figures(parse(run_lines(
@@ -116,6 +145,8 @@ class Report(unittest.TestCase):
     """report.py on a directory of base logs."""
 
     def write_base(self, out, lines):
+        out = os.path.join(out, "base")
+        os.makedirs(out)
         for driver in ("mcp2510", "mcp251x"):
             for chip in ("mcp2510", "mcp2515"):
                 with open(os.path.join(out, f"{driver}-{chip}.console.log"), "w") as f:
