@@ -19,7 +19,7 @@
 # Floods and bursts are counted end to end by can-flood (tests/vm/guest):
 # RX at can0's socket, TX in the bus monitor, where the phantom sees them.
 #
-# The script stays quiet while a burst runs (one sleep, no polling): under
+# The script stays quiet while a burst runs (one wait, no polling): under
 # TCG every fork of busybox costs the guest tens of milliseconds, which
 # would swamp the CPU figures of the driver.
 set -eu
@@ -160,11 +160,12 @@ rx() {
 	counting /tmp/flood.txt can-flood recv can0 "$3" -t "$(idle_ms "$2")"
 	cpu_mark
 	echo "$3 $FLOOD_TEMPLATE $2 checked" >"$SIM/flood"
-	quiet_wait "$_secs" flood_done ||
-		fail "the flood at $2 bit/s never ended"
-	# what the chip holds still reaches the socket after the last frame
+	# the count ends a second after the last frame (or once none came for
+	# a while): what the chip holds still reaches the socket, and waiting
+	# for it is one wait, not a poll
 	counted /tmp/flood.txt
 	cpu_busy
+	wait_for 60 flood_done || fail "the flood at $2 bit/s never ended"
 	report "$1" "bitrate=$2 frames=$3 seconds=$_secs $BUSY" \
 		"$COUNT $(counters)"
 }
@@ -178,6 +179,7 @@ rx() {
 # rests on FLOOD_FRAMES frames.  A flood still void after its tries ends
 # the search without a result.
 rx_search() {
+	# shellcheck disable=SC2086
 	for br in $(printf '%s\n' $RX_BITRATES | sort -rn); do
 		again rx rx-probe "$br" "$PROBE_FRAMES"
 		[ "$VOID" = 0 ] || break
@@ -193,6 +195,7 @@ rx_search() {
 # the bus as FLOOD_FRAMES at the highest of TX_BITRATES, and at least
 # TX_MIN_FRAMES (the utilisation comes from the monitor's last 256).
 tx_frames() {
+	# shellcheck disable=SC2086
 	_top=$(printf '%s\n' $TX_BITRATES | sort -rn | head -n 1)
 	awk -v n="$FLOOD_FRAMES" -v m="$TX_MIN_FRAMES" -v br="$1" -v top="$_top" \
 		'BEGIN { f = int(n * br / top + 0.5); print f < m ? m : f }'
@@ -222,7 +225,6 @@ tx() {
 	cpu_mark
 	can-flood send can0 "$3" >/tmp/flood-send.txt ||
 		fail "can-flood send at $2 bit/s: $(cat /tmp/flood-send.txt)"
-	sleep "$_secs"
 	counted /tmp/flood.txt
 	cpu_busy
 	_sent=$(sim_counter 0 frames_tx)
