@@ -218,6 +218,8 @@ def figures(log):
     fig["clock_stalls_boot"] = int(log["done"][0].get("clock_stalls", 0)
                                    - setup.get("clock_stalls", 0))
     fig["measurements_repeated"] = r.tries - r.kept
+    # the guest's uptime at its end: what the boot cost, repeats included
+    fig["guest_seconds"] = log["done"][0].get("up")
     fig["missing"] = r.missing
     return fig
 

@@ -120,6 +120,12 @@ class Stalls(unittest.TestCase):
         self.assertEqual(fig["tx_latency_us"]["125000"]["p50"], 100.0)
         self.assertEqual(fig["missing"], [])
         self.assertEqual(fig["measurements_repeated"], 1)
+        self.assertIsNone(fig["guest_seconds"])
+
+    def test_the_boot_is_timed_by_its_last_line(self):
+        lines = run_lines()
+        lines[-1] += " up=412.5"
+        self.assertEqual(figures.figures(parse(lines))["guest_seconds"], 412.5)
 
     def test_a_stalled_last_try_is_missing(self):
         fig = figures.figures(parse(run_lines(
