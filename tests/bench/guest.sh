@@ -6,7 +6,7 @@
 #
 # /extra/bench.conf sets FLOOD_FRAMES (frames of an RX flood that makes a
 # lossless claim), PROBE_FRAMES (frames of the probe before it),
-# TX_MIN_FRAMES (the fewest frames of a TX burst), FRAMES (per latency and timestamp measurement, at most 256: the bus
+# TX_FRAMES (frames of a TX burst), FRAMES (per latency and timestamp measurement, at most 256: the bus
 # monitor), RX_BITRATES, TX_BITRATES, CPU_FRAMES, CPU_BITRATE,
 # COMPARE_BITRATES and SATURATION_BITRATE (latency and timestamps: where
 # every driver keeps up, and at saturation), TIME_SCALE (the value given
@@ -191,16 +191,6 @@ rx_search() {
 	[ "$VOID" = 0 ] || report rx-search-incomplete
 }
 
-# tx_frames BITRATE: a TX burst's frames, sized by bus time: as long on
-# the bus as FLOOD_FRAMES at the highest of TX_BITRATES, and at least
-# TX_MIN_FRAMES (the utilisation comes from the monitor's last 256).
-tx_frames() {
-	# shellcheck disable=SC2086
-	_top=$(printf '%s\n' $TX_BITRATES | sort -rn | head -n 1)
-	awk -v n="$FLOOD_FRAMES" -v m="$TX_MIN_FRAMES" -v br="$1" -v top="$_top" \
-		'BEGIN { f = int(n * br / top + 0.5); print f < m ? m : f }'
-}
-
 # spi_time_on: the board profile's SPI and interrupt costs at its cost
 # scale (docs/simulator.md, "SPI time"); they apply to messages that
 # start afterwards, so before the interface comes up.
@@ -321,7 +311,7 @@ if [ "${SPI_TIME:-0}" = 1 ]; then
 fi
 report setup "driver=$VM_DRIVER variant=$VM_VARIANT time_scale=$TIME_SCALE" \
 	"frames=$FRAMES flood_frames=$FLOOD_FRAMES probe_frames=$PROBE_FRAMES" \
-	"tx_min_frames=$TX_MIN_FRAMES cpu_frames=$CPU_FRAMES" \
+	"tx_frames=$TX_FRAMES cpu_frames=$CPU_FRAMES" \
 	"cpu_bitrate=$CPU_BITRATE cpus=$NCPUS stall_tries=$STALL_TRIES" \
 	"saturation_bitrate=$SATURATION_BITRATE" \
 	"clocksource=$(cat /sys/devices/system/clocksource/clocksource0/current_clocksource)" \
@@ -350,7 +340,7 @@ for br in $COMPARE_BITRATES $SATURATION_BITRATE; do
 done
 rx_search
 for br in $TX_BITRATES; do
-	again tx tx "$br" "$(tx_frames "$br")"
+	again tx tx "$br" "$TX_FRAMES"
 done
 ip link set can0 down
 # the bus clock's stalls since the module was loaded: the run is void if
