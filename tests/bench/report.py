@@ -61,7 +61,7 @@ def run_setup(s):
         "clocksource": s["clocksource"],
     }
     for key in ("spi_msg_ns", "spi_cs_setup_ns", "spi_cs_hold_ns", "spi_ctlr_max_hz",
-                "irq_latency_ns", "cost_scale_pct"):
+                "irq_latency_ns", "cost_scale_pct", "probe_frames", "tx_frames"):
         if key in s:
             out[key] = int(s[key])
     return out

@@ -74,11 +74,19 @@ def provenance(run):
     return describe(run) + stale
 
 
+def flood_sizes(s):
+    """The frames of the floods and bursts of a run's settings."""
+    if "tx_frames" not in s:
+        return f"{s['flood_frames']} frames per flood or burst"
+    return (f"RX floods of {s['flood_frames']} frames after probes of {s['probe_frames']},"
+            f" TX bursts of {s['tx_frames']}")
+
+
 def tables(summary):
     s = summary["setup"]
     out = [f"{provenance(summary['run'])}: Debian {s['kernel']} kernel in QEMU (TCG, {s['guest_cpus']} CPUs, clock source"
            f" {s['clocksource']}), mcp2510-sim.ko time_scale={s['time_scale']};"
-           f" {s['flood_frames']} frames per flood or burst, counted end to end,"
+           f" {flood_sizes(s)}, counted end to end,"
            f" {s['cpu_frames']} for the per-frame costs (125 kbit/s)."
            " Userspace port: host, in-process model.", ""]
     out += ["Per 8-byte standard frame:", ""] + cost_table(summary) + [""]
@@ -105,7 +113,7 @@ def profile_table(title, entry):
            f" {s['spi_msg_ns'] / 1e3:g} µs, CS setup {s['spi_cs_setup_ns']} ns and hold"
            f" {s['spi_cs_hold_ns']} ns, SCK at most {sck} (MCP2510 5 MHz, MCP2515 10 MHz),"
            f" interrupt latency {s['irq_latency_ns'] / 1e3:g} µs (before scaling);"
-           f" time_scale={s['time_scale']}, {s['flood_frames']} frames per flood or burst,"
+           f" time_scale={s['time_scale']}, {flood_sizes(s)},"
            f" {s['cpu_frames']} frames at {s['cpu_bitrate'] // 1000} kbit/s for the"
            " per-frame costs.", ""]
     rates = sorted({int(r) for d in DRIVERS for c in CHIPS

@@ -18,7 +18,8 @@ from test_report import SETUP, flood, run_lines  # noqa: E402
 
 PI_SETUP = SETUP.replace("spi_time=0", "spi_time=1") + (
     " profile=pi spi_msg_ns=5000 spi_cs_setup_ns=1000 spi_cs_hold_ns=3000"
-    " spi_ctlr_max_hz=0 irq_latency_ns=4000 cost_scale_pct=100")
+    " spi_ctlr_max_hz=0 irq_latency_ns=4000 cost_scale_pct=100 probe_frames=200"
+    " tx_frames=300")
 CURRENT = {"BENCH_SOURCES": "s1", "BENCH_SETTINGS_TIMED": "t1", "BENCH_SETTINGS_BASE": "b1"}
 
 
@@ -66,6 +67,8 @@ class Pieces(unittest.TestCase):
                       " (this driver) and 125-250 kbit/s (mcp251x); ratio 1",
                       summary["headlines"])
         self.assertIn("**pi 1x** (measured 2026-12-01T10:00Z at aaa1111)", res.stdout)
+        self.assertIn("RX floods of 1000 frames after probes of 200, TX bursts of 300",
+                      res.stdout)
         self.assertIn("**pi 2x** (measured 2026-12-02T11:00Z at bbb2222)", res.stdout)
 
     def test_a_piece_on_other_sources_is_stale(self):
