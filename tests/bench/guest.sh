@@ -6,15 +6,16 @@
 #
 # /extra/bench.conf sets FLOOD_FRAMES (frames of an RX flood that makes a
 # lossless claim), PROBE_FRAMES (frames of the probe before it),
-# TX_FRAMES (frames of a TX burst), FRAMES (per latency and timestamp measurement, at most 256: the bus
-# monitor), RX_BITRATES, TX_BITRATES, CPU_FRAMES, CPU_BITRATE,
-# COMPARE_BITRATES and SATURATION_BITRATE (latency and timestamps: where
-# every driver keeps up, and at saturation), TIME_SCALE (the value given
-# to mcp2510-sim.ko), STALL_TRIES (see again() below) and LATENCY_ONLY (1:
-# the latency measurements alone, for the PREEMPT_RT kernel).  For a
-# board profile it also sets PROFILE, COST_SCALE_PCT (the profile's costs
-# scaled, in percent), SPI_TIME=1 and SPI_SEED (the seed of the model's
-# latency draws).
+# TX_FRAMES (frames of a TX burst), FRAMES (per latency and timestamp
+# measurement, at most 256: the bus monitor), RX_BITRATES, TX_BITRATES,
+# CPU_FRAMES, CPU_BITRATE, COMPARE_BITRATES and SATURATION_BITRATE
+# (latency and timestamps: where every driver keeps up, and at
+# saturation), TIME_SCALE (the value given to mcp2510-sim.ko),
+# STALL_TRIES (see again() below) and LATENCY_ONLY (1: the latency
+# measurements alone, for the PREEMPT_RT kernel).  For a board profile it
+# also sets PROFILE, COST_SCALE_PCT (the profile's costs scaled, in
+# percent), SPI_TIME=1 and SPI_SEED (the seed of the model's latency
+# draws).
 #
 # Floods and bursts are counted end to end by can-flood (tests/vm/guest):
 # RX at can0's socket, TX in the bus monitor, where the phantom sees them.
