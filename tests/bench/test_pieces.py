@@ -14,7 +14,7 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
-from test_report import SETUP, flood, run_lines  # noqa: E402
+from test_report import SETUP, flood, run_lines, write_base  # noqa: E402
 
 PI_SETUP = SETUP.replace("spi_time=0", "spi_time=1") + (
     " profile=pi spi_msg_ns=5000 spi_cs_setup_ns=1000 spi_cs_hold_ns=3000"
@@ -98,6 +98,17 @@ class Pieces(unittest.TestCase):
                          ["pi 1x: measured with other settings",
                           "pi 2x: measured on other sources, measured with other settings"])
         self.assertEqual(summary["headlines"], [])
+
+    def test_a_base_piece_with_other_settings_is_stale(self):
+        with tempfile.TemporaryDirectory() as out:
+            base = write_base(out, run_lines())
+            with open(os.path.join(base, "run.txt"), "w") as f:
+                f.write("date=2026-12-01T10:00Z\ncommit=aaa1111\nsources=s1\nsettings=b0\n")
+            res, summary = report(out)
+        self.assertNotEqual(res.returncode, 0)
+        self.assertEqual(summary["stale"], ["base: measured with other settings"])
+        self.assertIn("measured 2026-12-01T10:00Z at aaa1111; stale: measured with other"
+                      " settings: Debian 6.1 kernel", res.stdout)
 
     def test_without_the_current_sources_nothing_is_stale(self):
         with tempfile.TemporaryDirectory() as out:

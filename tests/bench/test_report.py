@@ -67,6 +67,22 @@ def as_run(line):
     return parse([line, "bench: done"])[line.split()[1]][0]
 
 
+def write_base(out, lines):
+    """A base piece in OUT whose four boots logged LINES; returns its
+    directory."""
+    out = os.path.join(out, "base")
+    os.makedirs(out)
+    for driver in ("mcp2510", "mcp251x"):
+        for chip in ("mcp2510", "mcp2515"):
+            with open(os.path.join(out, f"{driver}-{chip}.console.log"), "w") as f:
+                f.write("\n".join(lines) + "\n")
+    for chip in ("mcp2510", "mcp2515"):
+        with open(os.path.join(out, f"userspace-{chip}.txt"), "w") as f:
+            f.write("rx: 6.00 spi transfers/frame, 29.00 bytes\n"
+                    "tx: 6.00 spi transfers/frame, 29.00 bytes\ncpu: 3.0 us/frame\n")
+    return out
+
+
 class Lossless(unittest.TestCase):
     def test_every_frame_once_in_order_is_lossless(self):
         runs = [as_run(flood("rx", 125000)), as_run(flood("rx", 250000))]
@@ -150,21 +166,9 @@ class Stalls(unittest.TestCase):
 class Report(unittest.TestCase):
     """report.py on a directory of base logs."""
 
-    def write_base(self, out, lines):
-        out = os.path.join(out, "base")
-        os.makedirs(out)
-        for driver in ("mcp2510", "mcp251x"):
-            for chip in ("mcp2510", "mcp2515"):
-                with open(os.path.join(out, f"{driver}-{chip}.console.log"), "w") as f:
-                    f.write("\n".join(lines) + "\n")
-        for chip in ("mcp2510", "mcp2515"):
-            with open(os.path.join(out, f"userspace-{chip}.txt"), "w") as f:
-                f.write("rx: 6.00 spi transfers/frame, 29.00 bytes\n"
-                        "tx: 6.00 spi transfers/frame, 29.00 bytes\ncpu: 3.0 us/frame\n")
-
     def report(self, lines):
         with tempfile.TemporaryDirectory() as out:
-            self.write_base(out, lines)
+            write_base(out, lines)
             res = subprocess.run([sys.executable, os.path.join(HERE, "report.py"), out], capture_output=True, text=True)
             with open(os.path.join(out, "summary.json")) as f:
                 return res, json.load(f)
