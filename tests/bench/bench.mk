@@ -2,7 +2,7 @@
 # (docs/performance.md).  Not part of make check: it asserts nothing.
 #
 #   make bench [BENCH_PROFILES="base pi pi-rt slow"] [BENCH_SCALES="50 100 200"]
-#              [BENCH_JOBS=2] [BENCH_RT_PROFILES=pi-rt] [BENCH_RT_SCALES=100]
+#              [BENCH_JOBS=4] [BENCH_RT_PROFILES=pi-rt] [BENCH_RT_SCALES=100]
 #              [BENCH_FRAMES=100] [BENCH_FLOOD_FRAMES=1000]
 #              [BENCH_PROBE_FRAMES=200] [BENCH_TX_FRAMES=300]
 #              [BENCH_CPU_FRAMES=1000]
@@ -30,7 +30,7 @@
 
 BENCH_OUT := $(BUILD)/bench
 BENCH_PROFILES ?= base pi pi-rt slow
-BENCH_JOBS ?= 2
+BENCH_JOBS ?= 4
 BENCH_RT_PROFILES ?= pi-rt
 BENCH_RT_SCALES ?= 100
 BENCH_PROBE_FRAMES ?= 200
