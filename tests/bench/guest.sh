@@ -4,22 +4,23 @@
 # loaded.  Prints one "bench: WHAT key=value..." line per measurement on the
 # console for tests/bench/report.py; it asserts nothing about speed.
 #
-# /extra/bench.conf sets FLOOD_FRAMES (frames per RX flood and TX burst),
-# FRAMES (per latency and timestamp measurement, at most 256: the bus
-# monitor), RX_BITRATES, TX_BITRATES, CPU_FRAMES, CPU_BITRATE,
-# COMPARE_BITRATES and SATURATION_BITRATE (latency and timestamps: where
-# every driver keeps up, and at saturation), TIME_SCALE (the value given
-# to mcp2510-sim.ko), STALL_TRIES (see again() below) and LATENCY_ONLY (1:
-# the latency measurements alone, for the PREEMPT_RT kernel).  For a
-# board profile it also sets PROFILE, COST_SCALE_PCT (the profile's costs
-# scaled, in percent), SPI_TIME=1, SPI_SEED (the seed of the model's
-# latency draws) and RX_SEARCH=1: then the RX bit rates (ascending) are bisected for the
-# highest one without loss instead of swept.
+# /extra/bench.conf sets FLOOD_FRAMES (frames of an RX flood that makes a
+# lossless claim), PROBE_FRAMES (frames of the probe before it),
+# TX_FRAMES (frames of a TX burst), FRAMES (per latency and timestamp
+# measurement, at most 256: the bus monitor), RX_BITRATES, TX_BITRATES,
+# CPU_FRAMES, CPU_BITRATE, COMPARE_BITRATES and SATURATION_BITRATE
+# (latency and timestamps: where every driver keeps up, and at
+# saturation), TIME_SCALE (the value given to mcp2510-sim.ko),
+# STALL_TRIES (see again() below) and LATENCY_ONLY (1: the latency
+# measurements alone, for the PREEMPT_RT kernel).  For a board profile it
+# also sets PROFILE, COST_SCALE_PCT (the profile's costs scaled, in
+# percent), SPI_TIME=1 and SPI_SEED (the seed of the model's latency
+# draws).
 #
 # Floods and bursts are counted end to end by can-flood (tests/vm/guest):
 # RX at can0's socket, TX in the bus monitor, where the phantom sees them.
 #
-# The script stays quiet while a burst runs (one sleep, no polling): under
+# The script stays quiet while a burst runs (one wait, no polling): under
 # TCG every fork of busybox costs the guest tens of milliseconds, which
 # would swamp the CPU figures of the driver.
 set -eu
@@ -36,16 +37,19 @@ FLOOD_TEMPLATE=123#0000000000000000
 # report WHAT FIELDS...: one measurement's line.  After a cpu_mark it also
 # gives the bus clock's stalls since then and sets VOID to 1 if there
 # were any (docs/simulator.md, "Time": the measurement is void).
+# Every line ends with up=, the guest's uptime in seconds: what each
+# measurement costs in real time (how long a full run takes).
 report() {
 	VOID=0
+	read -r _up _ </proc/uptime
 	if [ -n "${MARK_STALLS:-}" ]; then
 		read -r _stalls <"$SIM/clock_stalls"
 		_stalls=$((_stalls - MARK_STALLS))
 		[ "$_stalls" -eq 0 ] || VOID=1
-		echo "bench: $* stalls=$_stalls"
+		echo "bench: $* stalls=$_stalls up=$_up"
 		MARK_STALLS=
 	else
-		echo "bench: $*"
+		echo "bench: $* up=$_up"
 	fi
 }
 
@@ -157,43 +161,35 @@ rx() {
 	counting /tmp/flood.txt can-flood recv can0 "$3" -t "$(idle_ms "$2")"
 	cpu_mark
 	echo "$3 $FLOOD_TEMPLATE $2 checked" >"$SIM/flood"
-	quiet_wait "$_secs" flood_done ||
-		fail "the flood at $2 bit/s never ended"
-	# what the chip holds still reaches the socket after the last frame
+	# the count ends a second after the last frame (or once none came for
+	# a while): what the chip holds still reaches the socket, and waiting
+	# for it is one wait, not a poll
 	counted /tmp/flood.txt
 	cpu_busy
+	wait_for 60 flood_done || fail "the flood at $2 bit/s never ended"
 	report "$1" "bitrate=$2 frames=$3 seconds=$_secs $BUSY" \
 		"$COUNT $(counters)"
 }
 
-# nth N WORDS...: the Nth of WORDS (from 1).
-nth() {
-	shift "$1"
-	echo "$1"
-}
-
-# rx_search: bisect RX_BITRATES (ascending) for the highest bit rate at
-# which a flood of FLOOD_FRAMES is lossless, assuming loss only grows
-# with the bit rate.  The highest comes first: on a Raspberry Pi class
-# profile a driver should keep up there, and then one flood settles it.
-# A flood still void after its tries ends the search without a result.
+# rx_search: the RX bit rates from the highest down until a flood of
+# FLOOD_FRAMES is lossless: the highest bit rate without loss, assuming
+# loss only grows with the bit rate (the rates below it are not flooded:
+# the search has decided them).  Each rate is first probed with
+# PROBE_FRAMES frames; damage there decides the rate at once, so only a
+# lossless probe is followed by the full flood, and every lossless claim
+# rests on FLOOD_FRAMES frames.  A flood still void after its tries ends
+# the search without a result.
 rx_search() {
-	set -- $RX_BITRATES
-	_n=$#
-	_lo=0 _hi=$((_n + 1)) _try=$_n
-	while [ $((_hi - _lo)) -gt 1 ]; do
-		again rx rx "$(nth "$_try" $RX_BITRATES)" "$FLOOD_FRAMES"
-		if [ "$VOID" = 1 ]; then
-			report rx-search-incomplete
-			return
-		fi
-		if [ "$LOSSLESS" = 1 ]; then
-			_lo=$_try
-		else
-			_hi=$_try
-		fi
-		_try=$(((_lo + _hi) / 2))
+	# shellcheck disable=SC2086
+	for br in $(printf '%s\n' $RX_BITRATES | sort -rn); do
+		again rx rx-probe "$br" "$PROBE_FRAMES"
+		[ "$VOID" = 0 ] || break
+		[ "$LOSSLESS" = 1 ] || continue
+		again rx rx "$br" "$FLOOD_FRAMES"
+		[ "$VOID" = 0 ] || break
+		[ "$LOSSLESS" = 0 ] || return 0
 	done
+	[ "$VOID" = 0 ] || report rx-search-incomplete
 }
 
 # spi_time_on: the board profile's SPI and interrupt costs at its cost
@@ -220,7 +216,6 @@ tx() {
 	cpu_mark
 	can-flood send can0 "$3" >/tmp/flood-send.txt ||
 		fail "can-flood send at $2 bit/s: $(cat /tmp/flood-send.txt)"
-	sleep "$_secs"
 	counted /tmp/flood.txt
 	cpu_busy
 	_sent=$(sim_counter 0 frames_tx)
@@ -316,7 +311,8 @@ if [ "${SPI_TIME:-0}" = 1 ]; then
 	done
 fi
 report setup "driver=$VM_DRIVER variant=$VM_VARIANT time_scale=$TIME_SCALE" \
-	"frames=$FRAMES flood_frames=$FLOOD_FRAMES cpu_frames=$CPU_FRAMES" \
+	"frames=$FRAMES flood_frames=$FLOOD_FRAMES probe_frames=$PROBE_FRAMES" \
+	"tx_frames=$TX_FRAMES cpu_frames=$CPU_FRAMES" \
 	"cpu_bitrate=$CPU_BITRATE cpus=$NCPUS stall_tries=$STALL_TRIES" \
 	"saturation_bitrate=$SATURATION_BITRATE" \
 	"clocksource=$(cat /sys/devices/system/clocksource/clocksource0/current_clocksource)" \
@@ -343,15 +339,9 @@ again tx cpu-tx "$CPU_BITRATE" "$CPU_FRAMES"
 for br in $COMPARE_BITRATES $SATURATION_BITRATE; do
 	again rxts "$br" "$FRAMES"
 done
-if [ "${RX_SEARCH:-0}" = 1 ]; then
-	rx_search
-else
-	for br in $RX_BITRATES; do
-		again rx rx "$br" "$FLOOD_FRAMES"
-	done
-fi
+rx_search
 for br in $TX_BITRATES; do
-	again tx tx "$br" "$FLOOD_FRAMES"
+	again tx tx "$br" "$TX_FRAMES"
 done
 ip link set can0 down
 # the bus clock's stalls since the module was loaded: the run is void if

@@ -3,18 +3,20 @@
 
     report.py OUTDIR [DOC]
 
-Reads OUTDIR/<driver>-<chip>.console.log (the "bench:" lines of
-tests/bench/guest.sh) and OUTDIR/userspace-<chip>.txt (mcp2510ctl bench)
-of the base profile, and OUTDIR/<profile>/<scale>x/<driver>-<chip>.console.log
-(with rt-<driver>-<chip>.console.log, the PREEMPT_RT kernel's latency) of
-the board profiles, whichever are there.  Prints tables and headlines,
-writes OUTDIR/summary.json and, for base, the plot's data; given DOC,
-draws DOC's performance.svg (gnuplot) and replaces the figures between
-DOC's "bench:begin" and "bench:end" markers (base) and between
-"bench-profiles:begin" and "bench-profiles:end" (board profiles).
+Reads every piece in OUTDIR, whichever run wrote it: OUTDIR/base/
+(<driver>-<chip>.console.log, the "bench:" lines of tests/bench/guest.sh,
+and userspace-<chip>.txt, mcp2510ctl bench) and OUTDIR/<profile>/<scale>x/
+(<driver>-<chip>.console.log, with rt-<driver>-<chip>.console.log for the
+PREEMPT_RT kernel's latency), each with its run.txt (tests/bench/pieces.py).
+Prints tables and headlines, writes OUTDIR/summary.json and, for base,
+the plot's data; given DOC, draws DOC's performance.svg (gnuplot) and
+replaces the figures between DOC's "bench:begin" and "bench:end" markers
+(base), "bench-profiles:begin" and "bench-profiles:end" (board profiles)
+and "bench-compare:begin" and "bench-compare:end" (before and after).
 
-Exits 1 when a figure is missing: a measurement void in each of its
-tries (tests/bench/figures.py), or a profile whose runs are incomplete.
+Exits 1 when a figure is missing (a measurement void in each of its
+tries, tests/bench/figures.py, or a piece whose runs are incomplete) or
+a piece is stale.
 """
 import json
 import os
@@ -22,13 +24,17 @@ import re
 import subprocess
 import sys
 
+from compare import before_after
 from figures import figures, parse_console
+from pieces import piece_info
 from tables import CHIPS, DRIVERS, headlines, profile_tables, tables
 
 BEGIN = "<!-- bench:begin (written by make bench) -->"
 END = "<!-- bench:end -->"
 PROFILES_BEGIN = "<!-- bench-profiles:begin (written by make bench) -->"
 PROFILES_END = "<!-- bench-profiles:end -->"
+COMPARE_BEGIN = "<!-- bench-compare:begin (written by make bench) -->"
+COMPARE_END = "<!-- bench-compare:end -->"
 SCALE_DIR = re.compile(r"^\d+(\.\d+)?x$")
 
 
@@ -55,7 +61,7 @@ def run_setup(s):
         "clocksource": s["clocksource"],
     }
     for key in ("spi_msg_ns", "spi_cs_setup_ns", "spi_cs_hold_ns", "spi_ctlr_max_hz",
-                "irq_latency_ns", "cost_scale_pct"):
+                "irq_latency_ns", "cost_scale_pct", "probe_frames", "tx_frames"):
         if key in s:
             out[key] = int(s[key])
     return out
@@ -86,12 +92,18 @@ def userspace_figures(path):
 
 
 def have_base(out):
-    return os.path.exists(os.path.join(out, "mcp2510-mcp2510.console.log"))
+    return os.path.exists(os.path.join(out, "base", "mcp2510-mcp2510.console.log"))
 
 
 def collect(out, missing):
     """The base profile, as {driver: figures of the MCP2510 with the
-    MCP2515's under "mcp2515"}, "userspace" and "setup"."""
+    MCP2515's under "mcp2515"}, "userspace", "setup" and "run"."""
+    out = os.path.join(out, "base")
+    paths = [os.path.join(out, f"{d}-{c}.console.log") for d in DRIVERS for c in CHIPS]
+    paths += [os.path.join(out, f"userspace-{c}.txt") for c in CHIPS]
+    if not all(complete(p) or p.endswith(".txt") and os.path.exists(p) for p in paths):
+        missing.append("base: the runs are incomplete")
+        return {}
     summary = {}
     setup = None
     for driver in DRIVERS:
@@ -105,6 +117,7 @@ def collect(out, missing):
     chips = {c: userspace_figures(os.path.join(out, f"userspace-{c}.txt")) for c in CHIPS}
     summary["userspace"] = dict(chips["mcp2510"], chip="mcp2510", mcp2515=chips["mcp2515"])
     summary["setup"] = run_setup(setup)
+    summary["run"] = piece_info(out, "base")
     return summary
 
 
@@ -118,7 +131,7 @@ def collect_profiles(out, missing):
     found = {}
     for profile in sorted(os.listdir(out)):
         pdir = os.path.join(out, profile)
-        if not os.path.isdir(pdir):
+        if profile == "base" or not os.path.isdir(pdir):
             continue
         labels = sorted((d for d in os.listdir(pdir) if SCALE_DIR.match(d)), key=scale_key)
         for label in labels:
@@ -133,7 +146,7 @@ def collect_scale(sdir, name, missing):
     if not all(complete(p) for p in paths.values()):
         missing.append(f"{name}: the runs are incomplete")
         return None
-    entry = {}
+    entry = {"run": piece_info(sdir, "timed")}
     for (driver, chip), path in paths.items():
         log = parse_console(path)
         entry.setdefault("setup", run_setup(log["setup"][0]))
@@ -180,21 +193,37 @@ def update_doc(doc, lines, begin=BEGIN, end_mark=END):
         f.write(text)
 
 
+def stale_pieces(summary):
+    """'NAME: reasons' of every stale piece."""
+    pieces = [("base", summary["run"])] if "run" in summary else []
+    pieces += [(f"{p} {label}", e["run"]) for p, scales in summary.get("profiles", {}).items()
+               for label, e in scales.items()]
+    return [f"{name}: {', '.join(run['stale'])}" for name, run in pieces if run["stale"]]
+
+
+def fresh(profiles):
+    """The profiles' pieces that are not stale."""
+    out = {p: {label: e for label, e in scales.items() if not e["run"]["stale"]}
+           for p, scales in profiles.items()}
+    return {p: scales for p, scales in out.items() if scales}
+
+
 def main():
     if len(sys.argv) not in (2, 3):
         sys.exit(__doc__)
     out = sys.argv[1]
     doc = sys.argv[2] if len(sys.argv) == 3 else None
     missing = []
-    base = have_base(out)
-    summary = collect(out, missing) if base else {}
+    summary = collect(out, missing) if have_base(out) else {}
+    base = bool(summary)
     profiles = collect_profiles(out, missing)
     if not base and not profiles and not missing:
         sys.exit(f"report: no bench logs in {out}")
     if profiles:
         summary["profiles"] = profiles
-        summary["headlines"] = headlines(profiles)
+        summary["headlines"] = headlines(fresh(profiles))
     summary["missing"] = missing
+    summary["stale"] = stale_pieces(summary)
     with open(os.path.join(out, "summary.json"), "w", encoding="utf-8") as f:
         json.dump(summary, f, indent=2, sort_keys=True)
         f.write("\n")
@@ -209,17 +238,23 @@ def main():
             plot(data, summary, svg)
             done.append(svg)
     if profiles:
-        lines = profile_tables(profiles)
-        print("\n".join(lines + ["Headlines (band over the cost scales):"]
-                        + [f"- {h}" for h in summary["headlines"]]))
+        lines = profile_tables(profiles) + ["Headlines (band over the cost scales):", ""]
+        lines += [f"- {h}" for h in summary["headlines"]] or ["- none: every piece is stale"]
+        print("\n".join(lines))
         if doc:
-            update_doc(doc, lines + ["Headlines (band over the cost scales):", ""]
-                       + [f"- {h}" for h in summary["headlines"]], PROFILES_BEGIN, PROFILES_END)
+            update_doc(doc, lines, PROFILES_BEGIN, PROFILES_END)
+    compare = before_after(profiles)
+    print("\n".join(compare))
+    if doc:
+        update_doc(doc, compare, COMPARE_BEGIN, COMPARE_END)
     print(f"bench: {', '.join(done)}")
     for m in missing:
         print(f"bench: missing: {m}", file=sys.stderr)
-    if missing:
-        sys.exit(f"bench: {len(missing)} figures missing: rerun on a quieter host")
+    for m in summary["stale"]:
+        print(f"bench: stale: {m} (run it again)", file=sys.stderr)
+    if missing or summary["stale"]:
+        sys.exit(f"bench: {len(missing)} figures missing, {len(summary['stale'])} pieces"
+                 " stale: rerun those pieces on a quieter host")
 
 
 if __name__ == "__main__":

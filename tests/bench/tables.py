@@ -1,6 +1,7 @@
 """The bench's figures as markdown tables (docs/performance.md) and as
 headlines, each claim with the band in which it holds over the cost
 scales that ran."""
+from pieces import describe
 
 DRIVERS = ("mcp2510", "mcp251x")
 CHIPS = ("mcp2510", "mcp2515")
@@ -67,11 +68,25 @@ def rate_table(summary, key, title, extra=None):
     return lines
 
 
+def provenance(run):
+    """When and on which commit a piece was measured, and if stale, why."""
+    stale = f"; stale: {', '.join(run['stale'])}" if run["stale"] else ""
+    return describe(run) + stale
+
+
+def flood_sizes(s):
+    """The frames of the floods and bursts of a run's settings."""
+    if "tx_frames" not in s:
+        return f"{s['flood_frames']} frames per flood or burst"
+    return (f"RX floods of {s['flood_frames']} frames after probes of {s['probe_frames']},"
+            f" TX bursts of {s['tx_frames']}")
+
+
 def tables(summary):
     s = summary["setup"]
-    out = [f"Debian {s['kernel']} kernel in QEMU (TCG, {s['guest_cpus']} CPUs, clock source"
+    out = [f"{provenance(summary['run'])}: Debian {s['kernel']} kernel in QEMU (TCG, {s['guest_cpus']} CPUs, clock source"
            f" {s['clocksource']}), mcp2510-sim.ko time_scale={s['time_scale']};"
-           f" {s['flood_frames']} frames per flood or burst, counted end to end,"
+           f" {flood_sizes(s)}, counted end to end,"
            f" {s['cpu_frames']} for the per-frame costs (125 kbit/s)."
            " Userspace port: host, in-process model.", ""]
     out += ["Per 8-byte standard frame:", ""] + cost_table(summary) + [""]
@@ -94,16 +109,16 @@ def profile_tables(profiles):
 def profile_table(title, entry):
     s = entry["setup"]
     sck = f"{s['spi_ctlr_max_hz'] / 1e6:g} MHz" if s["spi_ctlr_max_hz"] else "the chip's limit"
-    out = [f"**{title}**: costs at {s['cost_scale_pct']} %: SPI message overhead"
+    out = [f"**{title}** ({provenance(entry['run'])}): costs at {s['cost_scale_pct']} %: SPI message overhead"
            f" {s['spi_msg_ns'] / 1e3:g} µs, CS setup {s['spi_cs_setup_ns']} ns and hold"
            f" {s['spi_cs_hold_ns']} ns, SCK at most {sck} (MCP2510 5 MHz, MCP2515 10 MHz),"
            f" interrupt latency {s['irq_latency_ns'] / 1e3:g} µs (before scaling);"
-           f" time_scale={s['time_scale']}, {s['flood_frames']} frames per flood or burst,"
+           f" time_scale={s['time_scale']}, {flood_sizes(s)},"
            f" {s['cpu_frames']} frames at {s['cpu_bitrate'] // 1000} kbit/s for the"
            " per-frame costs.", ""]
     rates = sorted({int(r) for d in DRIVERS for c in CHIPS
                     for r in entry[d][c]["tx_bus_utilisation"]})
-    out += ["| driver | chip | zero loss up to | floods: lost/dup/reord/corrupt | "
+    out += ["| driver | chip | zero loss up to | floods: lost/dup/reord/corrupt of frames | "
             + " | ".join(f"TX {r // 1000}k" for r in rates)
             + " | SPI µs per RX frame | SPI µs per TX frame | SPI late µs per RX frame"
             " | guest CPU µs per RX frame / time_scale (bound) | missing |",
@@ -112,8 +127,9 @@ def profile_table(title, entry):
     for driver in DRIVERS:
         for chip in CHIPS:
             f = entry[driver][chip]
-            floods = ", ".join(f"{int(r) // 1000}k {damage_text(d)}"
-                               for r, d in sorted(f["rx_damage"].items(), key=lambda x: int(x[0])))
+            floods = ", ".join(f"{int(r) // 1000}k {damage_text(d)} of {f['rx_frames'][r]}"
+                               for r, d in sorted(f["rx_damage"].items(), key=lambda x: int(x[0]))
+                               if d is not None)
             util = [pct(f["tx_bus_utilisation"].get(str(r))) for r in rates]
             cpu = f["cpu_us_per_frame"]
             bound = f["cpu_us_per_frame_bound"]

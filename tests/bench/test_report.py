@@ -67,6 +67,22 @@ def as_run(line):
     return parse([line, "bench: done"])[line.split()[1]][0]
 
 
+def write_base(out, lines):
+    """A base piece in OUT whose four boots logged LINES; returns its
+    directory."""
+    out = os.path.join(out, "base")
+    os.makedirs(out)
+    for driver in ("mcp2510", "mcp251x"):
+        for chip in ("mcp2510", "mcp2515"):
+            with open(os.path.join(out, f"{driver}-{chip}.console.log"), "w") as f:
+                f.write("\n".join(lines) + "\n")
+    for chip in ("mcp2510", "mcp2515"):
+        with open(os.path.join(out, f"userspace-{chip}.txt"), "w") as f:
+            f.write("rx: 6.00 spi transfers/frame, 29.00 bytes\n"
+                    "tx: 6.00 spi transfers/frame, 29.00 bytes\ncpu: 3.0 us/frame\n")
+    return out
+
+
 class Lossless(unittest.TestCase):
     def test_every_frame_once_in_order_is_lossless(self):
         runs = [as_run(flood("rx", 125000)), as_run(flood("rx", 250000))]
@@ -82,6 +98,35 @@ class Lossless(unittest.TestCase):
             self.assertEqual(figures.max_lossless(runs), 125000, damage)
 
 
+class Search(unittest.TestCase):
+    """The RX search's probes and full floods."""
+
+    def probe(self, rate, **kw):
+        return flood("rx-probe", rate, **kw).replace("frames=1000", "frames=200")
+
+    def test_a_lossy_probe_decides_its_rate(self):
+        fig = figures.figures(parse(run_lines(rx_lines=[
+            self.probe(1000000, lost=3), self.probe(500000), flood("rx", 500000)])))
+        self.assertEqual(fig["rx_max_lossless_bitrate"], 500000)
+        self.assertEqual(fig["rx_frames"], {"1000000": 200, "500000": 1000})
+        self.assertEqual(fig["rx_loss"]["1000000"], 0.015)
+        self.assertEqual(fig["missing"], [])
+
+    def test_a_lossless_probe_claims_nothing_without_its_flood(self):
+        fig = figures.figures(parse(run_lines(rx_lines=[
+            self.probe(500000), flood("rx", 500000, lost=1), self.probe(250000),
+            flood("rx", 250000)])))
+        self.assertEqual(fig["rx_max_lossless_bitrate"], 250000)
+        self.assertEqual(fig["rx_frames"]["500000"], 1000)
+        self.assertEqual(fig["rx_loss_bound_95"]["250000"], 0.003)
+
+    def test_a_stalled_probe_leaves_no_lossless_rate(self):
+        fig = figures.figures(parse(run_lines(rx_lines=[
+            self.probe(1000000, stalls=1), "bench: rx-search-incomplete"])))
+        self.assertIsNone(fig["rx_max_lossless_bitrate"])
+        self.assertIn("rx-probe 1000000", fig["missing"])
+
+
 class Stalls(unittest.TestCase):
     def test_the_last_clean_try_is_kept(self):
         fig = figures.figures(parse(run_lines(
@@ -91,6 +136,12 @@ class Stalls(unittest.TestCase):
         self.assertEqual(fig["tx_latency_us"]["125000"]["p50"], 100.0)
         self.assertEqual(fig["missing"], [])
         self.assertEqual(fig["measurements_repeated"], 1)
+        self.assertIsNone(fig["guest_seconds"])
+
+    def test_the_boot_is_timed_by_its_last_line(self):
+        lines = run_lines()
+        lines[-1] += " up=412.5"
+        self.assertEqual(figures.figures(parse(lines))["guest_seconds"], 412.5)
 
     def test_a_stalled_last_try_is_missing(self):
         fig = figures.figures(parse(run_lines(
@@ -115,19 +166,9 @@ class Stalls(unittest.TestCase):
 class Report(unittest.TestCase):
     """report.py on a directory of base logs."""
 
-    def write_base(self, out, lines):
-        for driver in ("mcp2510", "mcp251x"):
-            for chip in ("mcp2510", "mcp2515"):
-                with open(os.path.join(out, f"{driver}-{chip}.console.log"), "w") as f:
-                    f.write("\n".join(lines) + "\n")
-        for chip in ("mcp2510", "mcp2515"):
-            with open(os.path.join(out, f"userspace-{chip}.txt"), "w") as f:
-                f.write("rx: 6.00 spi transfers/frame, 29.00 bytes\n"
-                        "tx: 6.00 spi transfers/frame, 29.00 bytes\ncpu: 3.0 us/frame\n")
-
     def report(self, lines):
         with tempfile.TemporaryDirectory() as out:
-            self.write_base(out, lines)
+            write_base(out, lines)
             res = subprocess.run([sys.executable, os.path.join(HERE, "report.py"), out], capture_output=True, text=True)
             with open(os.path.join(out, "summary.json")) as f:
                 return res, json.load(f)
