@@ -10,6 +10,7 @@
 
 #include <linux/can/dev.h>
 #include <linux/can/rx-offload.h>
+#include <linux/can/skb.h>
 #include <linux/workqueue.h>
 
 /*
@@ -37,6 +38,35 @@ can_rx_offload_get_echo_skb_queue_tail(struct can_rx_offload *offload,
 	return can_rx_offload_get_echo_skb(offload, idx, 0, frame_len_ptr);
 }
 #endif
+
+/*
+ * can-dev keeps an echo skb's length on the wire in the skb's CAN
+ * extension in 7.x, in its headroom before.  alloc_can_skb() leaves the
+ * field unset, so the driver writes 0 into the frames it receives.
+ */
+static inline void mcp2510_skb_set_frame_len(struct sk_buff *skb,
+					     unsigned int frame_len)
+{
+#ifdef MCP2510_HAVE_CAN_SKB_EXT
+	struct can_skb_ext *csx = can_skb_ext_find(skb);
+
+	if (csx)
+		csx->can_framelen = frame_len;
+#else
+	can_skb_prv(skb)->frame_len = frame_len;
+#endif
+}
+
+static inline unsigned int mcp2510_skb_frame_len(struct sk_buff *skb)
+{
+#ifdef MCP2510_HAVE_CAN_SKB_EXT
+	struct can_skb_ext *csx = can_skb_ext_find(skb);
+
+	return csx ? csx->can_framelen : 0;
+#else
+	return can_skb_prv(skb)->frame_len;
+#endif
+}
 
 /*
  * system_wq was renamed system_percpu_wq (a per-CPU queue, as before); 7.x

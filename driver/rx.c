@@ -35,7 +35,7 @@ void mcp2510_rx_queue(struct mcp2510_priv *priv, struct sk_buff *skb)
 
 	lockdep_assert_held(&priv->lock);
 	/* No length on the wire: it tells the frame from an echo (rx_disable). */
-	can_skb_prv(skb)->frame_len = 0;
+	mcp2510_skb_set_frame_len(skb, 0);
 	/* On failure rx-offload has freed the skb: the stack lags too far. */
 	if (can_rx_offload_queue_tail(&priv->offload, skb)) {
 		stats->rx_dropped++;
@@ -157,7 +157,7 @@ void mcp2510_rx_disable(struct mcp2510_priv *priv)
 	while ((skb = skb_dequeue(&priv->offload.skb_queue))) {
 		cf = (const struct can_frame *)skb->data;
 		if (!(cf->can_id & CAN_ERR_FLAG) &&
-		    !can_skb_prv(skb)->frame_len) {
+		    !mcp2510_skb_frame_len(skb)) {
 			WRITE_ONCE(priv->rx_packets, priv->rx_packets - 1);
 			if (!(cf->can_id & CAN_RTR_FLAG))
 				WRITE_ONCE(priv->rx_bytes,
