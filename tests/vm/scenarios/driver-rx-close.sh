@@ -14,13 +14,14 @@ all_cpus=$(taskset -p $$ | sed 's/.*: //')
 taskset -p 1 $$ >/dev/null
 rt_runtime=$(cat /proc/sys/kernel/sched_rt_runtime_us)
 irq_threads=
+# Threaded NAPI stays on: the next scenario gets new chips, and on 7.3
+# switching it off on an interface that is down never returns.
 restore() {
 	[ -z "${loop:-}" ] || kill "$loop" 2>/dev/null || true
 	echo "$rt_runtime" >/proc/sys/kernel/sched_rt_runtime_us
 	for pid in $irq_threads; do
 		taskset -p "$all_cpus" "$pid" >/dev/null 2>&1 || true
 	done
-	echo 0 >/sys/class/net/can0/threaded
 }
 trap restore EXIT
 
@@ -37,13 +38,15 @@ for comm in /proc/[0-9]*/comm; do
 	case $name in
 	napi/can0-*) napi=$pid ;;
 	irq/*-spi*)
-		taskset -p 1 "$pid" >/dev/null
-		irq_threads="$irq_threads $pid"
+		# 7.x keeps an IRQ thread where its interrupt is, and the
+		# simulated interrupts have no affinity to set: above the
+		# loop, they are not starved on the second CPU either.
+		taskset -p 1 "$pid" >/dev/null 2>&1 &&
+			irq_threads="$irq_threads $pid"
 		;;
 	esac
 done
 [ -n "$napi" ] || fail "no NAPI thread for can0"
-[ -n "$irq_threads" ] || fail "no IRQ thread of the chips"
 taskset -p 2 "$napi" >/dev/null
 # Real-time too, below the loop: on 6.12 and later the fair server would
 # give a SCHED_OTHER thread 50 ms a second however busy the loop is.
