@@ -7,8 +7,7 @@
  * A buffer is written only while its TXREQ is clear.  An RTS whose
  * transfer failed leaves the buffer "unsure" until READ STATUS tells.
  * Completions are reported in queue order.  Why, and what it is worth
- * against one buffer (95% of the bus against 27% in make bench at
- * 1 Mbit/s): docs/driver-internals.md.
+ * against one buffer (measured): docs/driver-internals.md.
  */
 #include "mcp2510_core_priv.h"
 
