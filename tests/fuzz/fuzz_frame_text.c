@@ -26,19 +26,6 @@ static bool frame_equal(const struct can_frame *a, const struct can_frame *b)
 	       !memcmp(a->data, b->data, sizeof(a->data));
 }
 
-static void check_valid(const struct can_frame *cf)
-{
-	canid_t id = cf->can_id & ~(CAN_EFF_FLAG | CAN_RTR_FLAG);
-	unsigned int i;
-
-	FUZZ_CHECK(id <= (cf->can_id & CAN_EFF_FLAG ? CAN_EFF_MASK :
-			  CAN_SFF_MASK));
-	FUZZ_CHECK(cf->len <= CAN_MAX_DLEN);
-	for (i = 0; i < CAN_MAX_DLEN; i++)
-		FUZZ_CHECK(cf->data[i] == 0 ||
-			   (!(cf->can_id & CAN_RTR_FLAG) && i < cf->len));
-}
-
 static void check_parse(const uint8_t *data, size_t size)
 {
 	char *text = malloc(size + 1);
@@ -55,7 +42,7 @@ static void check_parse(const uint8_t *data, size_t size)
 		free(text);
 		return;
 	}
-	check_valid(&cf);
+	fuzz_check_frame(&cf);
 	n = frame_format(&cf, formatted, sizeof(formatted));
 	FUZZ_CHECK(n > 0 && (size_t)n < sizeof(formatted));
 	FUZZ_CHECK(frame_parse(formatted, &again, &why) == 0);
@@ -89,7 +76,7 @@ static void check_format(const uint8_t *data, size_t size)
 		return;
 	}
 	FUZZ_CHECK(frame_parse(formatted, &again, &why) == 0);
-	check_valid(&again);
+	fuzz_check_frame(&again);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
