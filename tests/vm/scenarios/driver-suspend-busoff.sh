@@ -11,8 +11,11 @@
 # after the resume, which started the chip afresh.
 # can1 is the one: the devices suspend in the reverse order of their
 # registration, so the other chip's slowed-down suspend cannot delay it.
-# Bus time runs 100 times slower than real time, so that the chip is
-# bus-off long enough (1.1 s) for the slowed-down driver to see it.
+# Bus time runs 100 times slower than real time, and the bus at 50 kbit/s,
+# so that the chip stays bus-off long enough (2.8 s) for the slowed-down
+# driver to see it (about 0.8 s on an idle host); a host too busy to run
+# the guest in time lets the chip recover first, and the bus-off is tried
+# again.
 set -eu
 . /lib/rig.sh
 
@@ -34,20 +37,36 @@ caninte_off() {
 	return 1
 }
 
-can_up can0 125000
-can_up can1 125000 restart-ms 1000
+# busoff_stopping: drive chip1 bus-off with every SPI message slowed down;
+# true once the IRQ thread has begun to stop the chip, false when it
+# never did.
+busoff_stopping() {
+	# 2 ms of bus time: 0.2 s in real time.
+	echo 2000000 >"$SIM/spi_msg_ns"
+	echo 1 >"$SIM/spi_time"
+	echo 32 >"$SIM/bus_errors"
+	cansend can1 123#01
+	_polls=0
+	until caninte_off; do
+		_polls=$((_polls + 1))
+		[ $_polls -lt 600 ] || return 1
+		nap 0.02
+	done
+}
+
+can_up can0 50000
+can_up can1 50000 restart-ms 1000
 caninte_off && fail "CANINTE is 0 on a running chip"
-before=$(restarts)
-# 2 ms of bus time: 0.2 s in real time.
-echo 2000000 >"$SIM/spi_msg_ns"
-echo 1 >"$SIM/spi_time"
-echo 32 >"$SIM/bus_errors"
-cansend can1 123#01
-_polls=0
-until caninte_off; do
-	_polls=$((_polls + 1))
-	[ $_polls -lt 600 ] || fail "chip1 was never stopped at a bus-off (chip1 bus-offs: $(sim_counter 1 bus_off))"
-	nap 0.02
+try=1
+while :; do
+	before=$(restarts)
+	busoff_stopping && break
+	[ "$try" -lt 3 ] || fail "chip1 was never stopped at a bus-off in $try tries (chip1 bus-offs: $(sim_counter 1 bus_off))"
+	echo "try $try: chip1 recovered before its driver saw the bus-off"
+	echo 0 >"$SIM/spi_time"
+	ip link set can1 down
+	can_up can1 50000 restart-ms 1000
+	try=$((try + 1))
 done
 echo devices >/sys/power/pm_test
 echo freeze >/sys/power/state || fail "suspend failed: $(dmesg | tail -n 5)"
