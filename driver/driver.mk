@@ -42,7 +42,9 @@ KBUILD_TREES := $(BUILD)/kbuild
 MODULES_OUT := $(BUILD)/modules
 # libelf-dev brings the libelf the kbuild tools of Debian's headers link
 # against (objtool): libelf1 on Debian 12, libelf1t64 on Debian 13.
-KERNEL_PACKAGES := build-essential bc kmod libelf-dev
+# pahole gives each module its BTF: headers that carry a vmlinux (6.12 on)
+# have kbuild run it on every module it links.
+KERNEL_PACKAGES := build-essential bc kmod libelf-dev pahole
 
 # $(call kbuild_tree,DIR,SOURCES): one shell command that refreshes DIR as
 # a mirror of SOURCES made of symlinks (build products and hidden files left
