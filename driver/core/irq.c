@@ -3,7 +3,9 @@
  * The interrupt loop: find out what the chip flags, turn it into events
  * and clear exactly what was handled.  Each pass reads the flags
  * (irq_flags.c), takes the received frames (irq_rx.c), handles errors
- * (irq_error.c) and sent frames (irq_tx.c), then clears the flags.
+ * (irq_error.c) and sent frames (irq_tx.c), then clears the flags.  A
+ * pass that took a frame and saw the next arrive is followed by one that
+ * takes it, whatever the trigger of the line.
  *
  * TX, error and wake-up flags are cleared with one BIT MODIFY naming only
  * the flags handled, so a flag raised meanwhile survives and asserts INT
@@ -61,11 +63,20 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 	unsigned int pass;
 	int handled = 0, n;
 
+	/* the first pass reads the flags: anything may have come meanwhile */
+	chip->irq.rx_more = false;
 	for (pass = 0; pass < MCP2510_IRQ_MAX_PASSES; pass++) {
 		n = irq_pass(chip);
 		if (n < 0)
 			return n;
 		handled += n;
+		/*
+		 * The next frame is there: taking it now saves the flags
+		 * read and the wait for INT.  Bounded, for the TX work and
+		 * other users of the chip that wait for the handler.
+		 */
+		if (chip->irq.rx_more && pass + 1 < MCP2510_IRQ_RX_PASSES)
+			continue;
 		/*
 		 * A level-triggered line fires again while anything is
 		 * pending; an edge-triggered one only after INT went high,

@@ -24,6 +24,12 @@
  * separate transfers and a delay between them reopens that window.
  * Frames that go to RXB1 directly (rollover off, or a frame only RXB1's
  * filters accept) make the order between the buffers unknowable.
+ *
+ * The release of RXB1 is followed by a READ STATUS too, so that every
+ * pass that takes a frame ends knowing whether the next one has come:
+ * under a flood the next pass takes it on the strength of that status
+ * (irq.rx_more, see irq_flags.c), without reading the flags again or
+ * waiting for INT.
  */
 #include "mcp2510_core_priv.h"
 
@@ -77,9 +83,9 @@ static int rxb_recover(struct mcp2510_chip *chip, unsigned int n,
 
 /*
  * Read RXBn and release it in one message, delivering the frame once it
- * is released.  The release of RXB0 is followed, in the same message, by
- * a READ STATUS: whether RXB1 was full at that moment tells which buffer
- * holds the older frame from now on (see the top of the file).  The
+ * is released.  The release is followed, in the same message, by a READ
+ * STATUS: after RXB0's, whether RXB1 was full at that moment tells which
+ * buffer holds the older frame from now on (see the top of the file).  The
  * MCP2515's READ RX BUFFER releases the buffer itself when chip select
  * rises; the MCP2510 needs a BIT MODIFY of RXnIF after the READ.  When
  * the message fails, rxb_recover() finds out whether the release
@@ -103,9 +109,8 @@ static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
 	/* a plain READ releases nothing */
 	if (!chip->variant->has_buffer_instrs)
 		x[nx++] = (struct mcp2510_xfer){ modify, NULL, sizeof(modify) };
-	if (!n)
-		x[nx++] = (struct mcp2510_xfer){ status_tx, status_rx,
-						 sizeof(status_tx) };
+	x[nx++] = (struct mcp2510_xfer){ status_tx, status_rx,
+					 sizeof(status_tx) };
 	err = mcp2510_xfer_msg(chip, x, nx);
 	if (err) {
 		int ret = rxb_recover(chip, n, &cf);
@@ -114,10 +119,10 @@ static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
 			chip->events->rx(chip->ctx, &cf);
 		return err;
 	}
-	if (n)
-		chip->irq.rx1_first = false;
-	else
-		chip->irq.rx1_first = status_rx[1] & MCP2510_STATUS_RX1IF;
+	chip->irq.rx1_first = !n && status_rx[1] & MCP2510_STATUS_RX1IF;
+	chip->irq.rx_status = status_rx[1];
+	chip->irq.rx_more = status_rx[1] & (MCP2510_STATUS_RX0IF |
+					    MCP2510_STATUS_RX1IF);
 	mcp2510_frame_decode(rx + hdr, chip->ctrlmode, &cf);
 	if (chip->events->rx)
 		chip->events->rx(chip->ctx, &cf);
@@ -142,6 +147,7 @@ int rx_take(struct mcp2510_chip *chip, u8 intf)
 	 * pass saw RXB0 empty: the overflow may have come meanwhile, its
 	 * ERRIF unseen by READ STATUS (and rx_first_waited() relies on that).
 	 */
+	chip->irq.rx_more = false;
 	if ((intf & MCP2510_INT_RX_ALL) == MCP2510_INT_RX_ALL ||
 	    (chip->filters.rollover && intf & MCP2510_INT_RX(1)))
 		chip->irq.full_read_next = true;
@@ -151,8 +157,10 @@ int rx_take(struct mcp2510_chip *chip, u8 intf)
 		if (!(intf & MCP2510_INT_RX(n)))
 			continue;
 		err = rxb_take(chip, n);
-		if (err)
+		if (err) {
+			chip->irq.rx_more = false;
 			return err;
+		}
 	}
 	return 0;
 }
@@ -187,15 +195,17 @@ static bool rx_order_known(const struct mcp2510_chip *chip)
  * after one that may have missed an overflow reads CANINTF (rx_take()):
  * with rollover every overflow happens while RXB1 is full, and the pass
  * that takes RXB1 has the next one read CANINTF.  Without rollover RXB0
- * overflows alone, which no pass can tell from READ STATUS.
+ * overflows alone, which no pass can tell from READ STATUS.  A pass that
+ * goes on from the previous one's READ STATUS takes a frame that came
+ * during that pass, after INT fired.
  */
 bool rx_first_waited(const struct mcp2510_chip *chip,
 		     const struct irq_flags *f)
 {
 	u8 rx = f->intf & MCP2510_INT_RX_ALL;
 
-	if (!rx || rx != f->intf || chip->irq.flags_cleared ||
-	    !chip->filters.rollover)
+	if (!rx || rx != f->intf || f->rx_continued ||
+	    chip->irq.flags_cleared || !chip->filters.rollover)
 		return false;
 	return rx != MCP2510_INT_RX_ALL || rx_order_known(chip);
 }

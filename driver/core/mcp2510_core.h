@@ -207,6 +207,8 @@ struct mcp2510_chip {
 		bool full_read_next;	/* both RX buffers were full */
 		bool rx1_first;		/* RXB1 holds the older frame */
 		bool flags_cleared;	/* by a reset or wake-up: see rx_pass */
+		bool rx_more;		/* rx_status shows a frame to take */
+		u8 rx_status;		/* READ STATUS after the last release */
 	} irq;
 };
 
@@ -329,12 +331,16 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
 
 /* ---- interrupt ---- */
 #define MCP2510_IRQ_MAX_PASSES	64	/* bound of the edge-triggered loop */
+/* Passes one call may make while the frames keep coming (level INT). */
+#define MCP2510_IRQ_RX_PASSES	16
 /* Read CANINTF/EFLG at least every this many passes, even under RX load. */
 #define MCP2510_IRQ_FULL_READ_EVERY	8
 /*
  * Handle what the chip flags, raising events.  With a level-triggered INT
- * one pass is enough (the line fires again while anything is pending);
- * with chip->irq_edge set it loops until nothing is pending.  The loop is
+ * one pass is enough (the line fires again while anything is pending),
+ * but a pass that took a frame and saw the next one arrive goes on, up to
+ * MCP2510_IRQ_RX_PASSES passes; with chip->irq_edge set it loops until
+ * nothing is pending.  The loop is
  * bounded: a chip that never stops asserting returns -EAGAIN and counts an
  * irq storm.  Returns the number of flags handled.  A received frame is
  * delivered as soon as its buffer is released, oldest first; after a

@@ -58,6 +58,7 @@ struct irq_flags {
 	bool have_txreq;	/* ... when READ STATUS was read */
 	u8 status;		/* what it read */
 	bool full;		/* CANINTF and EFLG were read */
+	bool rx_continued;	/* nothing read: see flags_from_rx_status() */
 };
 
 /* irq_flags.c */

@@ -242,6 +242,7 @@ unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret)
 	while (calls < max && ch_int_asserted(node)) {
 		ch_irq_latency(node);
 		ret = mcp2510_irq_handle(&node->core);
+		node->irq_calls++;
 		calls++;
 	}
 	if (last_ret)
