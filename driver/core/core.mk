@@ -9,8 +9,8 @@
 
 CORE_DIR := driver/core
 CORE_SRCS := $(addprefix $(CORE_DIR)/, \
-	spi.c bringup.c start.c bittiming.c frame.c filter.c tx.c irq.c \
-	irq_flags.c irq_rx.c irq_tx.c irq_error.c \
+	spi.c bringup.c start.c bittiming.c frame.c filter.c \
+	tx.c tx_request.c irq.c irq_flags.c irq_rx.c irq_tx.c irq_error.c \
 	error.c pins.c health.c)
 CORE_USER_SRCS := $(CORE_DIR)/bittiming_calc.c
 

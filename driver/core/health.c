@@ -41,7 +41,7 @@ static int health_tx_check(struct mcp2510_chip *chip)
 			gone |= BIT(n);
 	mcp2510_tx_lost(chip, gone);
 	/* staged frames whose turn came while an RTS failed */
-	return mcp2510_tx_kick(chip);
+	return mcp2510_tx_kick(chip, 0);
 }
 
 int mcp2510_health_check(struct mcp2510_chip *chip)

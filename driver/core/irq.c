@@ -47,12 +47,7 @@ static int irq_pass(struct mcp2510_chip *chip)
 		mcp2510_tx_resolve(chip, f.status);
 	clear = handle_tx(chip, &f) |
 		(f.intf & (MCP2510_INT_MERR | MCP2510_INT_WAK));
-	if (clear) {
-		err = mcp2510_reg_modify(chip, MCP2510_REG_CANINTF, clear, 0);
-		if (err)
-			return err;
-	}
-	err = mcp2510_tx_kick(chip);
+	err = mcp2510_tx_kick(chip, clear);
 	if (err)
 		return err;
 	return flags_count(f.intf);

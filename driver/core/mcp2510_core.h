@@ -248,7 +248,6 @@ int mcp2510_reg_write(struct mcp2510_chip *chip, u8 addr, const u8 *buf,
 		      unsigned int len);
 int mcp2510_reg_modify(struct mcp2510_chip *chip, u8 addr, u8 mask, u8 val);
 int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status);
-int mcp2510_rts(struct mcp2510_chip *chip, u8 slots);
 
 /* ---- bring-up and modes ---- */
 /* RESET, start-up wait, check the chip answers: -ENODEV when it does not. */

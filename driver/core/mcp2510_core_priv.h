@@ -29,12 +29,25 @@ u8 mcp2510_tx_pending(const struct mcp2510_chip *chip);
 void mcp2510_tx_complete(struct mcp2510_chip *chip, u8 slots);
 /* Slots the chip dropped without sending (TXREQ gone, no TXnIF). */
 void mcp2510_tx_lost(struct mcp2510_chip *chip, u8 slots);
-/* READ STATUS @status: settle the slots whose RTS had an unknown outcome. */
-void mcp2510_tx_resolve(struct mcp2510_chip *chip, u8 status);
-/* Request the staged frames once no older frame is pending. */
-int mcp2510_tx_kick(struct mcp2510_chip *chip);
 /* Drop every queued frame, raising tx_aborted in queue order. */
 void mcp2510_tx_abort_all(struct mcp2510_chip *chip);
+
+/* tx_request.c */
+/* READ STATUS @status: settle the slots whose RTS had an unknown outcome. */
+void mcp2510_tx_resolve(struct mcp2510_chip *chip, u8 status);
+/* Load @regs (@nregs of them) into @slot with priority @txp. */
+int mcp2510_tx_load(struct mcp2510_chip *chip, unsigned int slot, u8 txp,
+		    const u8 *regs, unsigned int nregs);
+/* The same and its RTS in one message: 0 once requested, or -EIO. */
+int mcp2510_tx_send(struct mcp2510_chip *chip, unsigned int slot, u8 txp,
+		    const u8 *regs, unsigned int nregs);
+/* READ STATUS for the slots whose RTS had an unknown outcome. */
+int mcp2510_tx_status_resolve(struct mcp2510_chip *chip);
+/*
+ * Clear @intf_clear in CANINTF and request the staged frames once no older
+ * frame is pending, in one message.
+ */
+int mcp2510_tx_kick(struct mcp2510_chip *chip, u8 intf_clear);
 
 /* error.c */
 enum can_state mcp2510_error_eflg_state(u8 eflg);

@@ -111,15 +111,6 @@ int mcp2510_read_status(struct mcp2510_chip *chip, u8 *status)
 	return err;
 }
 
-int mcp2510_rts(struct mcp2510_chip *chip, u8 slots)
-{
-	const u8 tx = MCP2510_INSTR_RTS | (slots & MCP2510_RTS_ALL);
-
-	if (!slots || slots & ~MCP2510_RTS_ALL)
-		return -EINVAL;
-	return mcp2510_xfer(chip, &tx, NULL, 1);
-}
-
 int mcp2510_regs_dump(struct mcp2510_chip *chip, u8 *buf)
 {
 	return mcp2510_reg_read(chip, 0, buf, MCP2510_REGDUMP_LEN);

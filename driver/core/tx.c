@@ -4,10 +4,10 @@
  * pending buffer with the highest key (TXP * 3 + buffer number), so each
  * new frame gets a key below every pending frame's; when none is left it
  * is staged and requested with the others once the pending ones are gone.
- * A buffer is written only while its TXREQ is clear.  An RTS whose
- * transfer failed leaves the buffer "unsure" until READ STATUS tells.
- * Completions are reported in queue order.  Why, and what it is worth
- * against one buffer (measured): docs/driver-internals.md.
+ * A buffer is written only while its TXREQ is clear; loading and
+ * requesting are tx_request.c's.  Completions are reported in queue
+ * order.  Why, and what it is worth against one buffer (measured):
+ * docs/driver-internals.md.
  */
 #include "mcp2510_core_priv.h"
 
@@ -101,40 +101,6 @@ static bool tx_pick(const struct mcp2510_chip *chip, unsigned int floor,
 	return best_key >= 0;
 }
 
-/*
- * One transfer: SIDH..D(len-1) and, unless the MCP2515's LOAD TX BUFFER
- * can be used because TXBnCTRL already holds @txp, TXBnCTRL in front.
- */
-static int tx_load(struct mcp2510_chip *chip, unsigned int slot, u8 txp,
-		   const u8 *regs, unsigned int nregs)
-{
-	u8 tx[3 + MCP2510_FRAME_REGS];
-	unsigned int hdr;
-	int err;
-
-	if (chip->variant->has_buffer_instrs && txp == chip->tx.prio[slot] &&
-	    !(chip->tx.prio_unknown & BIT(slot))) {
-		tx[0] = MCP2515_INSTR_LOAD_TX_BUFFER |
-			MCP2515_LOAD_TXB_SIDH(slot);
-		hdr = 1;
-	} else {
-		tx[0] = MCP2510_INSTR_WRITE;
-		tx[1] = MCP2510_REG_TXBCTRL(slot);
-		tx[2] = FIELD_PREP(MCP2510_TXBCTRL_TXP_MASK, txp);
-		hdr = 3;
-	}
-	memcpy(tx + hdr, regs, nregs);
-	err = mcp2510_xfer(chip, tx, NULL, hdr + nregs);
-	if (err) {
-		if (hdr == 3)
-			chip->tx.prio_unknown |= BIT(slot);
-		return err;
-	}
-	chip->tx.prio[slot] = txp;
-	chip->tx.prio_unknown &= ~BIT(slot);
-	return 0;
-}
-
 unsigned int mcp2510_tx_free(const struct mcp2510_chip *chip)
 {
 	unsigned int slot, n = 0;
@@ -143,105 +109,6 @@ unsigned int mcp2510_tx_free(const struct mcp2510_chip *chip)
 		if (!(chip->tx.busy & BIT(slot)))
 			n++;
 	return n;
-}
-
-/*
- * What READ STATUS says of the unsure slots: a staged frame whose RTS was
- * latched is pending now; a dropped frame's slot is free once its TXREQ
- * is clear.
- */
-void mcp2510_tx_resolve(struct mcp2510_chip *chip, u8 status)
-{
-	unsigned int n;
-
-	for (n = 0; n < MCP2510_TXB_COUNT; n++) {
-		bool txreq = status & MCP2510_STATUS_TXREQ(n);
-		bool latched = txreq || status & MCP2510_STATUS_TXIF(n);
-
-		if (!(chip->tx.unsure & BIT(n)))
-			continue;
-		if (chip->tx.busy & BIT(n)) {
-			if (latched)
-				chip->tx.staged &= ~BIT(n);
-			chip->tx.unsure &= ~BIT(n);
-		} else if (!txreq) {
-			chip->tx.unsure &= ~BIT(n);
-		}
-	}
-}
-
-static int tx_status_resolve(struct mcp2510_chip *chip)
-{
-	u8 status;
-	int err;
-
-	err = mcp2510_read_status(chip, &status);
-	if (!err)
-		mcp2510_tx_resolve(chip, status);
-	return err;
-}
-
-/*
- * RTS for @slots; returns those whose request the chip latched, or -EIO
- * when the RTS failed and READ STATUS could not tell (see the top).
- */
-static int tx_request(struct mcp2510_chip *chip, u8 slots)
-{
-	u8 status, latched = 0;
-	unsigned int n;
-	int err;
-
-	if (!mcp2510_rts(chip, slots))
-		return slots;
-	err = mcp2510_read_status(chip, &status);
-	if (err)
-		return err;
-	for (n = 0; n < MCP2510_TXB_COUNT; n++)
-		if (status & (MCP2510_STATUS_TXREQ(n) | MCP2510_STATUS_TXIF(n)))
-			latched |= BIT(n);
-	return latched & slots;
-}
-
-/*
- * Request the staged frames once nothing older is pending: they hold the
- * top keys, in queue order, and go with one RTS.
- */
-int mcp2510_tx_kick(struct mcp2510_chip *chip)
-{
-	int ret;
-
-	if (!chip->tx.staged || mcp2510_tx_pending(chip))
-		return 0;
-	if (chip->tx.unsure & chip->tx.busy) {
-		/* an RTS of theirs failed: never request a frame twice */
-		ret = tx_status_resolve(chip);
-		if (ret)
-			return ret;
-		if (!chip->tx.staged || mcp2510_tx_pending(chip))
-			return 0;
-	}
-	ret = tx_request(chip, chip->tx.staged);
-	if (ret < 0) {
-		chip->tx.unsure |= chip->tx.staged;
-		return ret;
-	}
-	chip->tx.staged &= ~ret;
-	return 0;
-}
-
-/* Load @cf into a slot with a key below every pending frame, request it. */
-static int tx_send(struct mcp2510_chip *chip, unsigned int slot, u8 txp,
-		   const u8 *regs, unsigned int nregs)
-{
-	int ret;
-
-	ret = tx_load(chip, slot, txp, regs, nregs);
-	if (ret)
-		return ret;
-	ret = tx_request(chip, BIT(slot));
-	if (ret < 0)
-		chip->tx.unsure |= BIT(slot);
-	return ret == (int)BIT(slot) ? 0 : -EIO;
 }
 
 /* Load @cf below the staged frames, to be requested by mcp2510_tx_kick(). */
@@ -253,7 +120,7 @@ static int tx_stage(struct mcp2510_chip *chip, const u8 *regs,
 
 	if (!tx_pick(chip, key_floor(chip, chip->tx.staged), slot, &txp))
 		return -EBUSY;	/* unreachable: 12 keys for 3 slots */
-	ret = tx_load(chip, *slot, txp, regs, nregs);
+	ret = mcp2510_tx_load(chip, *slot, txp, regs, nregs);
 	if (ret)
 		return ret;
 	chip->tx.staged |= BIT(*slot);
@@ -276,7 +143,7 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf)
 	if (nregs < 0)
 		return nregs;
 	if (!tx_unused(chip)) {
-		err = tx_status_resolve(chip);
+		err = mcp2510_tx_status_resolve(chip);
 		if (err)
 			return err;
 		if (!tx_unused(chip))
@@ -286,7 +153,7 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf)
 	if (!chip->tx.staged &&
 	    tx_pick(chip, key_floor(chip, mcp2510_tx_pending(chip)), &slot,
 		    &txp))
-		err = tx_send(chip, slot, txp, regs, nregs);
+		err = mcp2510_tx_send(chip, slot, txp, regs, nregs);
 	else
 		err = tx_stage(chip, regs, nregs, &slot);
 	if (err)
@@ -299,7 +166,7 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf)
 	 * frame is the core's either way; a failed kick is retried by the
 	 * next interrupt or health check.
 	 */
-	mcp2510_tx_kick(chip);
+	mcp2510_tx_kick(chip, 0);
 	return slot;
 }
 

@@ -187,23 +187,33 @@ static int run_message(struct mcp2510_sim_chip *chip, struct spi_message *msg)
 	return 0;
 }
 
+/* Whether a transfer of @msg is an RTS (alone, or after a load or a clear). */
+static bool message_has_rts(struct spi_message *msg)
+{
+	const struct spi_transfer *xfer;
+
+	list_for_each_entry(xfer, &msg->transfers, transfer_list) {
+		const u8 *tx = xfer->tx_buf;
+
+		if (tx && xfer->len &&
+		    (tx[0] & ~MCP2510_RTS_ALL) == MCP2510_INSTR_RTS)
+			return true;
+	}
+	return false;
+}
+
 /*
- * The spi_errors_rts fault, after @msg reached the chip: an RTS whose
- * message fails all the same, and spi_errors for the messages after it.
- * True when it claims @msg.
+ * The spi_errors_rts fault, after @msg reached the chip: a message with
+ * an RTS that fails all the same, and spi_errors for the messages after
+ * it.  True when it claims @msg.
  */
 static bool rts_fails(struct mcp2510_sim_chip *chip, struct spi_message *msg)
 {
-	const struct spi_transfer *xfer;
+	bool has_rts = message_has_rts(msg);
 	bool fail = false;
-	const u8 *tx;
 
-	xfer = list_first_entry_or_null(&msg->transfers, struct spi_transfer,
-					transfer_list);
-	tx = xfer ? xfer->tx_buf : NULL;
 	mcp2510_sim_lock(chip->sim);
-	if (chip->fails.rts && tx && xfer->len &&
-	    (tx[0] & ~MCP2510_RTS_ALL) == MCP2510_INSTR_RTS) {
+	if (chip->fails.rts && has_rts) {
 		chip->fails.spi = chip->fails.rts - 1;
 		chip->fails.rts = 0;
 		chip->harness.spi_failed++;

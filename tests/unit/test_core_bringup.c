@@ -469,8 +469,6 @@ static void test_register_access(void **state)
 		assert_int_equal(dump[i], sim_chip_peek(&node->sim, i));
 
 	assert_int_equal(mcp2510_reg_read(&node->core, 0, &v, 0), -EINVAL);
-	assert_int_equal(mcp2510_rts(&node->core, 0), -EINVAL);
-	assert_int_equal(mcp2510_rts(&node->core, 8), -EINVAL);
 	ch_rig_free(rig);
 }
 

@@ -435,7 +435,10 @@ static void test_spi_cost_per_8_byte_frame(void **state)
 	}
 }
 
-/* One frame on an idle chip: the exact instruction sequence. */
+/*
+ * One frame on an idle chip: the exact instruction sequence, the load and
+ * its RTS in one message.
+ */
 static void test_idle_submit_and_completion_cost(void **state)
 {
 	static const struct {
@@ -458,11 +461,13 @@ static void test_idle_submit_and_completion_cost(void **state)
 		assert_int_equal(ch_start(&rig->node[1], BITRATE, 0), 0);
 		for (k = 0; k < 2; k++) {
 			struct can_frame cf = ch_frame(0x123, 8, k);
+			u64 messages = tx->messages;
 			struct ch_spi_mark m;
 
 			ch_spi_mark(tx, &m);
 			assert_int_equal(mcp2510_tx_submit(&tx->core, &cf), 2);
 			m = ch_spi_since(tx, &m);
+			assert_int_equal(tx->messages - messages, 1);
 			assert_int_equal(m.transfers, 2);
 			assert_int_equal(m.bytes, k ? cases[i].second :
 					 cases[i].first);
@@ -609,6 +614,52 @@ static void test_restart_drops_queued_frames(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * The drain: with the keys used up a frame is staged until the pending
+ * ones are gone, and the pass that sees the last of them go clears their
+ * TXnIF and requests the staged frame in one message, so the bus waits a
+ * chip-select period after the clear rather than another message.
+ */
+static void test_drain_clears_and_requests_in_one_message(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	unsigned int i;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		struct ch_rig *rig = ch_rig_new(2, models[i]);
+		struct ch_node *tx = &rig->node[0], *rx = &rig->node[1];
+		u64 messages;
+		u32 k = 0;
+
+		assert_int_equal(ch_start(tx, BITRATE, 0), 0);
+		assert_int_equal(ch_start(rx, BITRATE, 0), 0);
+		while (!tx->core.tx.staged) {
+			struct can_frame cf = ch_frame(0x100, 8, k);
+
+			if (!mcp2510_tx_free(&tx->core)) {
+				assert_true(ch_step(rig));
+				continue;
+			}
+			assert_true(mcp2510_tx_submit(&tx->core, &cf) >= 0);
+			k++;
+		}
+		/* the pending frames go, nobody serves the sender meanwhile */
+		sim_bus_advance(&rig->bus, MS);
+		assert_true(ch_int_asserted(tx));
+		messages = tx->messages;
+		assert_int_equal(ch_service(tx, 4, NULL), 1);
+		/* the flags, then the clear with the RTS */
+		assert_int_equal(tx->messages - messages, 2);
+		assert_int_equal(tx->core.tx.staged, 0);
+		ch_run_idle(rig, 10 * MS);
+		assert_int_equal(tx->ev.tx_done_count, k);
+		ch_rig_free(rig);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -625,6 +676,7 @@ int main(void)
 		cmocka_unit_test(test_failed_submit_sends_nothing),
 		cmocka_unit_test(test_failed_rts_that_reached_the_chip),
 		cmocka_unit_test(test_restart_drops_queued_frames),
+		cmocka_unit_test(test_drain_clears_and_requests_in_one_message),
 	};
 
 	return cmocka_run_group_tests_name("core_tx", tests, NULL, NULL);
