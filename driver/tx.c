@@ -14,8 +14,10 @@
  * of the chip lock are reported together when it is released.  The halt
  * at bus-off ends every frame in the chip before can-dev's restart could
  * flush an echo skb, so none is lost that way.  A frame dropped before
- * it reached the chip, or whose echo skb could not be made, is completed
- * on the spot.
+ * it reached the chip, or whose echo skb could not be made, is counted
+ * with the completions of the hold that dropped it: BQL's completion may
+ * not run twice at once, and the chip lock is what keeps every report of
+ * one apart from the others.
  */
 #include <linux/can/dev.h>
 #include <linux/can/skb.h>
@@ -136,20 +138,17 @@ void mcp2510_tx_retry(struct mcp2510_priv *priv)
 }
 
 /*
- * A popped skb of @bytes on the wire now sits in @slot, or in none when
- * @slot is negative: then it was dropped and has ended.
+ * A popped skb now sits in @slot, or in none when @slot is negative: then
+ * it was dropped, and counted done under the chip lock.
  */
-static void mcp2510_tx_loaded(struct mcp2510_priv *priv, int slot,
-			      unsigned int bytes)
+static void mcp2510_tx_loaded(struct mcp2510_priv *priv, int slot)
 {
 	spin_lock_bh(&priv->tx_lock);
 	priv->tx_loading = false;
-	if (slot >= 0) {
+	if (slot >= 0)
 		priv->tx_inflight |= BIT(slot);
-	} else {
-		netdev_completed_queue(priv->ndev, 1, bytes);
+	else
 		mcp2510_tx_wake(priv);
-	}
 	spin_unlock_bh(&priv->tx_lock);
 }
 
@@ -205,7 +204,7 @@ static int mcp2510_tx_load(struct mcp2510_priv *priv, struct sk_buff *skb,
 	if (slot < 0)
 		return slot;
 
-	mcp2510_tx_loaded(priv, slot, bytes);
+	mcp2510_tx_loaded(priv, slot);
 	/*
 	 * The chip lock keeps the IRQ thread out until the echo skb is in
 	 * place, so a completion can never find the slot empty.  Without
@@ -236,10 +235,12 @@ void mcp2510_tx_work(struct work_struct *work)
 		bytes = can_skb_get_frame_len(skb);
 		mcp2510_lock(priv);
 		ret = mcp2510_tx_load(priv, skb, bytes);
-		if (ret == -EBUSY)
+		if (ret == -EBUSY) {
 			mcp2510_tx_fifo_unpop(priv, skb);
-		else if (ret)
+		} else if (ret) {
 			priv->ndev->stats.tx_dropped++;
+			mcp2510_tx_count_done(priv, bytes);
+		}
 		mcp2510_unlock(priv);
 		if (ret == -EBUSY)
 			return;
@@ -249,7 +250,7 @@ void mcp2510_tx_work(struct work_struct *work)
 			netdev_err_once(priv->ndev, "loading a frame failed: %pe\n",
 					ERR_PTR(ret));
 		dev_kfree_skb(skb);
-		mcp2510_tx_loaded(priv, ret, bytes);
+		mcp2510_tx_loaded(priv, ret);
 	}
 }
 
@@ -267,7 +268,8 @@ void mcp2510_tx_flush(struct mcp2510_priv *priv)
 		dev_kfree_skb(skb);
 		mcp2510_lock(priv);
 		priv->ndev->stats.tx_dropped++;
+		mcp2510_tx_count_done(priv, bytes);
 		mcp2510_unlock(priv);
-		mcp2510_tx_loaded(priv, -ENETDOWN, bytes);
+		mcp2510_tx_loaded(priv, -ENETDOWN);
 	}
 }
