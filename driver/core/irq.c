@@ -59,7 +59,7 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 	int handled = 0, n;
 
 	/* the first pass reads the flags: anything may have come meanwhile */
-	chip->irq.rx_more = false;
+	chip->irq.rx_status = 0;
 	for (pass = 0; pass < MCP2510_IRQ_MAX_PASSES; pass++) {
 		n = irq_pass(chip);
 		if (n < 0)
@@ -70,7 +70,7 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 		 * read and the wait for INT.  Bounded, for the TX work and
 		 * other users of the chip that wait for the handler.
 		 */
-		if (chip->irq.rx_more && pass + 1 < MCP2510_IRQ_RX_PASSES)
+		if (rx_status_more(chip) && pass + 1 < MCP2510_IRQ_RX_PASSES)
 			continue;
 		/*
 		 * A level-triggered line fires again while anything is

@@ -79,7 +79,7 @@ static bool flags_from_rx_status(struct mcp2510_chip *chip,
 {
 	struct irq_flags s;
 
-	if (!chip->irq.rx_more || full_read_periodic(chip))
+	if (!rx_status_more(chip) || full_read_periodic(chip))
 		return false;
 	status_decode(chip->irq.rx_status, &s);
 	f->intf = s.intf & MCP2510_INT_RX_ALL & chip->inte;

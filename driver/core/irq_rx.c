@@ -28,7 +28,7 @@
  * The release of RXB1 is followed by a READ STATUS too, so that every
  * pass that takes a frame ends knowing whether the next one has come:
  * under a flood the next pass takes it on the strength of that status
- * (irq.rx_more, see irq_flags.c), without reading the flags again or
+ * (irq.rx_status, see irq_flags.c), without reading the flags again or
  * waiting for INT.
  */
 #include "mcp2510_core_priv.h"
@@ -121,8 +121,6 @@ static int rxb_take(struct mcp2510_chip *chip, unsigned int n)
 	}
 	chip->irq.rx1_first = !n && status_rx[1] & MCP2510_STATUS_RX1IF;
 	chip->irq.rx_status = status_rx[1];
-	chip->irq.rx_more = status_rx[1] & (MCP2510_STATUS_RX0IF |
-					    MCP2510_STATUS_RX1IF);
 	mcp2510_frame_decode(rx + hdr, chip->ctrlmode, &cf);
 	if (chip->events->rx)
 		chip->events->rx(chip->ctx, &cf);
@@ -147,7 +145,7 @@ int rx_take(struct mcp2510_chip *chip, u8 intf)
 	 * pass saw RXB0 empty: the overflow may have come meanwhile, its
 	 * ERRIF unseen by READ STATUS (and rx_first_waited() relies on that).
 	 */
-	chip->irq.rx_more = false;
+	chip->irq.rx_status = 0;
 	if ((intf & MCP2510_INT_RX_ALL) == MCP2510_INT_RX_ALL ||
 	    (chip->filters.rollover && intf & MCP2510_INT_RX(1)))
 		chip->irq.full_read_next = true;
@@ -158,7 +156,7 @@ int rx_take(struct mcp2510_chip *chip, u8 intf)
 			continue;
 		err = rxb_take(chip, n);
 		if (err) {
-			chip->irq.rx_more = false;
+			chip->irq.rx_status = 0;
 			return err;
 		}
 	}

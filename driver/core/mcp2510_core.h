@@ -207,8 +207,8 @@ struct mcp2510_chip {
 		bool full_read_next;	/* both RX buffers were full */
 		bool rx1_first;		/* RXB1 holds the older frame */
 		bool flags_cleared;	/* by a reset or wake-up: see rx_pass */
-		bool rx_more;		/* rx_status shows a frame to take */
-		u8 rx_status;		/* READ STATUS after the last release */
+		/* READ STATUS after the pass's last release, 0: none */
+		u8 rx_status;
 	} irq;
 };
 

@@ -78,6 +78,13 @@ struct irq_flags {
 int flags_read(struct mcp2510_chip *chip, struct irq_flags *f);
 
 /* irq_rx.c */
+/* The READ STATUS that ended the last pass shows a frame to take. */
+static inline bool rx_status_more(const struct mcp2510_chip *chip)
+{
+	return chip->irq.rx_status & (MCP2510_STATUS_RX0IF |
+				      MCP2510_STATUS_RX1IF);
+}
+
 /* Take the flagged RX buffers in @intf, the older frame first. */
 int rx_take(struct mcp2510_chip *chip, u8 intf);
 /* Whether the pass's first frame waited in the chip (see rx_pass). */

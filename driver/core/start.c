@@ -94,7 +94,7 @@ static int chip_program(struct mcp2510_chip *chip)
 	}
 	chip->irq.full_read_next = false;
 	chip->irq.rx1_first = false;
-	chip->irq.rx_more = false;
+	chip->irq.rx_status = 0;
 	chip->irq.passes_to_full_read = MCP2510_IRQ_FULL_READ_EVERY;
 	chip->bec.txerr = 0;
 	chip->bec.rxerr = 0;
