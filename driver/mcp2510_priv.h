@@ -119,6 +119,9 @@ struct mcp2510_priv {
 	unsigned int tx_done_bytes;
 	struct work_struct tx_work;
 
+	/* netdev.c: a failed restart's carrier and retry, after can-dev's */
+	struct work_struct restart_failed_work;
+
 	/* sysfs acceptance filters, programmed into the chip on open */
 	struct mcp2510_filters filters;
 
@@ -168,6 +171,8 @@ int mcp2510_do_get_berr_counter(const struct net_device *ndev,
 				struct can_berr_counter *bec);
 int mcp2510_hw_up(struct mcp2510_priv *priv);
 void mcp2510_hw_down(struct mcp2510_priv *priv);
+void mcp2510_restart_init(struct mcp2510_priv *priv);
+void mcp2510_restart_cancel(struct mcp2510_priv *priv);
 int mcp2510_chip_reset_sleep(struct mcp2510_priv *priv);
 void mcp2510_halt_locked(struct mcp2510_priv *priv);
 

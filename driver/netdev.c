@@ -8,6 +8,7 @@
 #include <linux/minmax.h>
 #include <linux/netdevice.h>
 #include <linux/regulator/consumer.h>
+#include <linux/rtnetlink.h>
 #include <linux/spi/spi.h>
 
 #include "mcp2510_priv.h"
@@ -188,11 +189,9 @@ void mcp2510_halt_locked(struct mcp2510_priv *priv)
 }
 
 /*
- * An automatic restart that failed: the interface stays bus-off with its
- * carrier off (see mcp2510_do_set_mode()), can-dev schedules nothing
- * more, and a manual restart is refused while restart-ms is set.  Try
- * again later, at most once a second, so that a chip without power does
- * not flood the log.
+ * An automatic restart that failed: can-dev schedules nothing more, and a
+ * manual restart is refused while restart-ms is set.  Try again later, at
+ * most once a second, so that a chip without power does not flood the log.
  */
 static void mcp2510_restart_retry(struct mcp2510_priv *priv)
 {
@@ -203,16 +202,51 @@ static void mcp2510_restart_retry(struct mcp2510_priv *priv)
 				      msecs_to_jiffies(ms));
 }
 
+/*
+ * A restart failed: the interface stays bus-off with its carrier off.
+ * can-dev before the end of 2023 (6.1.21, say) turns the carrier on after
+ * do_set_mode() whatever it returned, and its next restart then hits
+ * BUG_ON(netif_carrier_ok()); so this runs once can_restart() has
+ * returned: the automatic one as can.restart_work, the manual one under
+ * RTNL.  Not cancelled by ndo_stop, which holds RTNL: it checks that the
+ * interface is still up and the chip still halted.
+ */
+static void mcp2510_restart_failed_work(struct work_struct *work)
+{
+	struct mcp2510_priv *priv = container_of(work, struct mcp2510_priv,
+						 restart_failed_work);
+
+	cancel_delayed_work_sync(&priv->can.restart_work);
+	rtnl_lock();
+	mcp2510_lock(priv);
+	if (netif_running(priv->ndev) &&
+	    mcp2510_dev_state(priv) == MCP2510_DEV_HALTED) {
+		netif_carrier_off(priv->ndev);
+		mcp2510_restart_retry(priv);
+	}
+	mcp2510_unlock(priv);
+	rtnl_unlock();
+}
+
+void mcp2510_restart_init(struct mcp2510_priv *priv)
+{
+	INIT_WORK(&priv->restart_failed_work, mcp2510_restart_failed_work);
+}
+
+/* At remove, without RTNL: the interface is gone, nothing queues it again. */
+void mcp2510_restart_cancel(struct mcp2510_priv *priv)
+{
+	cancel_work_sync(&priv->restart_failed_work);
+}
+
 /* Restart a chip stopped at bus-off; on failure it stays stopped. */
 static int mcp2510_restart_halted_locked(struct mcp2510_priv *priv)
 {
 	int ret;
 
 	ret = mcp2510_chip_start_locked(priv);
-	if (!ret)
-		return 0;
-	mcp2510_stop(&priv->chip);
-	mcp2510_restart_retry(priv);
+	if (ret)
+		mcp2510_stop(&priv->chip);
 	return ret;
 }
 
@@ -236,14 +270,8 @@ int mcp2510_do_set_mode(struct net_device *ndev, enum can_mode mode)
 		ret = -ENETDOWN;
 	mcp2510_rx_deliver(priv);
 	mcp2510_unlock(priv);
-	/*
-	 * can_restart() turned the carrier on before calling us.  can-dev
-	 * before 2023 (6.1.21, say) leaves it on when the restart fails, and
-	 * its next restart, the retry above included, then hits
-	 * BUG_ON(netif_carrier_ok()); later can-dev turns it off itself.
-	 */
 	if (ret) {
-		netif_carrier_off(ndev);
+		schedule_work(&priv->restart_failed_work);
 		return ret;
 	}
 

@@ -163,6 +163,7 @@ static int mcp2510_setup_netdev(struct mcp2510_priv *priv,
 	mutex_init(&priv->lock);
 	spin_lock_init(&priv->tx_lock);
 	INIT_WORK(&priv->tx_work, mcp2510_tx_work);
+	mcp2510_restart_init(priv);
 	mcp2510_watch_init(priv);
 
 	priv->can.clock.freq = osc_hz / 2;
@@ -278,6 +279,7 @@ static void mcp2510_remove(struct spi_device *spi)
 	struct net_device *ndev = priv->ndev;
 
 	unregister_candev(ndev);
+	mcp2510_restart_cancel(priv);
 	device_init_wakeup(&spi->dev, false);
 	mcp2510_gpio_unregister(priv);
 	mcp2510_power_off(priv);

@@ -71,5 +71,5 @@ hwtest-broken-modules: modules-deps
 			continue; }; \
 		$(HW_DIR)/broken/build $$k $(wildcard $(HW_DIR)/broken/*.patch); \
 	done
-VMTEST_DEPS += hwtest-broken-modules
+VMTEST_SUITE_DEPS += hwtest-broken-modules
 KERNEL_PATCHES += $(wildcard $(HW_DIR)/broken/*.patch)

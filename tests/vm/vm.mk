@@ -16,7 +16,9 @@
 #
 # Fragments whose output the guest picks up (build/modules/<kernel>/*.ko,
 # build/userspace/bin) add their make target to VMTEST_DEPS; vmtest runs
-# them after the kernels exist, with VM_KERNELS in the environment.
+# them after the kernels exist, with VM_KERNELS in the environment.  What
+# only some scenarios load, and make demo does not need, goes in
+# VMTEST_SUITE_DEPS.
 # KDIR for a kernel: tests/vm/kernel-info 6.12 kdir; in a recipe,
 # $(call vm_kdir,6.12), a shell expression (failing when it is not there).
 
@@ -27,6 +29,7 @@ CLEAN_KEEP += kernels vm/busybox vm/gpiod2
 # Debian kernels are fetched while that build ends.
 VM_KERNELS ?= 6.1 6.12 rt $(KERNEL_NEWEST) debug
 VMTEST_DEPS +=
+VMTEST_SUITE_DEPS +=
 export VM_KERNELS
 
 vm_kdir = $$($(VM_DIR)/kernel-info $(1) kdir)
@@ -67,14 +70,24 @@ initramfs: $(addprefix vm-kernel-,$(VM_KERNELS))
 	@for k in $(VM_KERNELS); do $(VM_DIR)/mkinitramfs $$k || exit 1; done
 
 vmtest: $(addprefix vm-kernel-,$(VM_KERNELS))
-	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS))
+	@$(MAKE) --no-print-directory $(VMTEST_DEPS) $(VMTEST_SUITE_DEPS)
 	@$(VM_DIR)/vmtest -k "$(VM_KERNELS)"
 
 vmtest-one:
 	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|7.3|debug|rt]"; exit 2; }
 	@$(MAKE) --no-print-directory vm-kernel-$(or $(KERNEL),6.1)
-	@$(if $(strip $(VMTEST_DEPS)),$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS=$(or $(KERNEL),6.1))
+	@$(MAKE) --no-print-directory $(VMTEST_DEPS) $(VMTEST_SUITE_DEPS) VM_KERNELS=$(or $(KERNEL),6.1)
 	@VM_SELFTEST=0 VM_EVERY_SCENARIO=1 $(VM_DIR)/vmtest -k "$(or $(KERNEL),6.1)" $(abspath $(SCENARIO))
+
+# can-dev as kernels before the end of 2023 have it, on the rig kernels
+# made from 6.1's sources (tests/vm/old-can-dev/build).
+.PHONY: old-can-dev-modules
+old-can-dev-modules: modules-deps
+	@set -e; ks=; for k in $(filter 6.1 debug,$(VM_KERNELS)); do \
+		if $(VM_DIR)/kernel-info $$k kdir >/dev/null 2>&1; then ks="$$ks $$k"; \
+		else echo "old-can-dev-modules: rig kernel $$k not there yet, not built"; fi; \
+	done; [ -z "$$ks" ] || $(VM_DIR)/old-can-dev/build $$ks
+VMTEST_SUITE_DEPS += old-can-dev-modules
 
 vm-info:
 	@for k in $(VM_DEBIAN_KERNELS) debug; do echo "== $$k"; $(VM_DIR)/kernel-info $$k || true; done
