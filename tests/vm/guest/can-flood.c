@@ -7,9 +7,9 @@
  *   can-flood send IFACE COUNT [-i ID] [-s START]
  *	writes COUNT frames to IFACE as fast as it takes them (ENOBUFS:
  *	waits a millisecond and tries again; no progress for IDLE_MS fails)
- *   can-flood recv IFACE COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS]
+ *   can-flood recv IFACE COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-o]
  *	counts the frames IFACE's socket receives
- *   can-flood check COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-f FILE]
+ *   can-flood check COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-o] [-f FILE]
  *	counts the frames of text lines in cansend syntax (candump -L, the
  *	simulator's bus monitor) from standard input, or from FILE, which is
  *	followed as it grows
@@ -20,6 +20,8 @@
  *            (a sender that only counts); without: the CRC-32
  *   -t MS    no frame for MS ms ends the count (before the first: 60 s); 3000
  *   -l MS    once every frame came, no frame for MS ms ends it; 1000
+ *   -o       only frames with the flood's identifier count: the others are
+ *            another sender's, not damaged frames of the flood
  *
  * recv and check print "ready" once listening, then one line:
  *
@@ -48,6 +50,7 @@
 struct opts {
 	struct flood f;
 	int idle_ms, linger_ms;
+	int only_id;
 	const char *file;
 };
 
@@ -63,8 +66,8 @@ static void usage(void)
 {
 	fprintf(stderr,
 		"usage: can-flood send IFACE COUNT [-i ID] [-s START]\n"
-		"       can-flood recv IFACE COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS]\n"
-		"       can-flood check COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-f FILE]\n");
+		"       can-flood recv IFACE COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-o]\n"
+		"       can-flood check COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-o] [-f FILE]\n");
 	exit(2);
 }
 
@@ -110,7 +113,7 @@ static void parse_opts(int argc, char **argv, struct opts *o)
 	o->f.id = 0x123;
 	o->idle_ms = 3000;
 	o->linger_ms = 1000;
-	while ((c = getopt(argc, argv, "i:s:w:t:l:f:")) != -1) {
+	while ((c = getopt(argc, argv, "i:s:w:t:l:of:")) != -1) {
 		switch (c) {
 		case 'i':
 			if (flood_id(optarg, &o->f.id))
@@ -131,6 +134,9 @@ static void parse_opts(int argc, char **argv, struct opts *o)
 			break;
 		case 'l':
 			o->linger_ms = (int)number(optarg, 10);
+			break;
+		case 'o':
+			o->only_id = 1;
 			break;
 		case 'f':
 			o->file = optarg;
@@ -204,7 +210,8 @@ static int socket_frame(int s, struct can_frame *cf, uint32_t *drops)
 static void recv_socket(const char *ifname, const struct opts *o,
 			struct flood_count *c, uint32_t *drops)
 {
-	int s = can_socket(ifname, RECEIVE_ALL), on = 1, size = 8 << 20;
+	int s = can_socket(ifname, o->only_id ? (int64_t)o->f.id : RECEIVE_ALL);
+	int on = 1, size = 8 << 20;
 	struct can_frame cf;
 	long last;
 
@@ -278,7 +285,8 @@ static void recv_text(const struct opts *o, struct flood_count *c)
 	fflush(stdout);
 	last = now_ms();
 	while (text_line(fd, !!o->file, deadline(o, c, last), line, sizeof(line)))
-		if (!flood_text_frame(line, &cf)) {
+		if (!flood_text_frame(line, &cf) &&
+		    (!o->only_id || cf.can_id == o->f.id)) {
 			flood_count_frame(c, &o->f, &cf);
 			last = now_ms();
 		}
