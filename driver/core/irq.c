@@ -5,7 +5,8 @@
  * (irq_flags.c), takes the received frames (irq_rx.c), handles errors
  * (irq_error.c) and sent frames (irq_tx.c), then clears the flags.  A
  * pass that took a frame and saw the next arrive is followed by one that
- * takes it, whatever the trigger of the line.
+ * takes it, whatever the trigger of the line, and a run of such passes
+ * polls for the next frame before it ends (irq_rx.c, rx_poll()).
  *
  * TX, error and wake-up flags are cleared with one BIT MODIFY naming only
  * the flags handled, so a flag raised meanwhile survives and asserts INT
@@ -37,6 +38,7 @@ static int irq_pass(struct mcp2510_chip *chip)
 	if (chip->events->rx_pass)
 		chip->events->rx_pass(chip->ctx, rx_first_waited(chip, &f));
 	chip->irq.flags_cleared = false;
+	chip->irq.rx_chained = f.rx_continued;
 	err = rx_take(chip, f.intf);
 	if (err)
 		return err;
@@ -53,10 +55,24 @@ static int irq_pass(struct mcp2510_chip *chip)
 	return flags_count(f.intf);
 }
 
+/*
+ * Whether a next pass has a frame to take, from the status that ended
+ * this one, or, when this pass went on from the previous one's (a
+ * flood), from a few polls.  Returns 1, 0 or a transfer error.
+ */
+static int rx_more(struct mcp2510_chip *chip)
+{
+	if (rx_status_more(chip))
+		return 1;
+	if (!chip->irq.rx_chained)
+		return 0;
+	return rx_poll(chip);
+}
+
 int mcp2510_irq_handle(struct mcp2510_chip *chip)
 {
 	unsigned int pass;
-	int handled = 0, n;
+	int handled = 0, n, more;
 
 	/* the first pass reads the flags: anything may have come meanwhile */
 	chip->irq.rx_status = 0;
@@ -70,8 +86,13 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 		 * read and the wait for INT.  Bounded, for the TX work and
 		 * other users of the chip that wait for the handler.
 		 */
-		if (rx_status_more(chip) && pass + 1 < MCP2510_IRQ_RX_PASSES)
-			continue;
+		if (pass + 1 < MCP2510_IRQ_RX_PASSES) {
+			more = rx_more(chip);
+			if (more < 0)
+				return more;
+			if (more)
+				continue;
+		}
 		/*
 		 * A level-triggered line fires again while anything is
 		 * pending; an edge-triggered one only after INT went high,

@@ -164,6 +164,29 @@ int rx_take(struct mcp2510_chip *chip, u8 intf)
 }
 
 /*
+ * A flood whose backlog the loop has just taken: the next frame is still
+ * on the bus, and leaving now costs the interrupt latency, whose tail can
+ * outlast both receive buffers.  A few READ STATUS polls wait for it
+ * instead; each costs 2 bytes in its own chip-select period.
+ */
+int rx_poll(struct mcp2510_chip *chip)
+{
+	unsigned int i;
+	u8 status;
+	int err;
+
+	for (i = 0; i < MCP2510_IRQ_RX_POLLS; i++) {
+		err = mcp2510_read_status(chip, &status);
+		if (err)
+			return err;
+		chip->irq.rx_status = status;
+		if (rx_status_more(chip))
+			return 1;
+	}
+	return 0;
+}
+
+/*
  * With rollover on: whether RXB1 can only hold a frame that came after
  * the one in RXB0 or the one released from it: RXB0 taking every frame,
  * so that no frame goes to RXB1 while RXB0 is free.  RXB0 takes every frame

@@ -87,6 +87,8 @@ static inline bool rx_status_more(const struct mcp2510_chip *chip)
 
 /* Take the flagged RX buffers in @intf, the older frame first. */
 int rx_take(struct mcp2510_chip *chip, u8 intf);
+/* Poll READ STATUS for the next frame: 1 when it came, 0, or an error. */
+int rx_poll(struct mcp2510_chip *chip);
 /* Whether the pass's first frame waited in the chip (see rx_pass). */
 bool rx_first_waited(const struct mcp2510_chip *chip,
 		     const struct irq_flags *f);

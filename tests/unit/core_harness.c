@@ -89,6 +89,8 @@ static int ch_xfer_msg(void *ctx, const struct mcp2510_xfer *x, unsigned int n)
 	sim_spi_msg_end(&node->rig->spi, &m, &node->sim);
 	node->msg_left = 0;
 	node->messages++;
+	if (n == 1 && x[0].len <= 2 && x[0].tx[0] == MCP2510_INSTR_READ_STATUS)
+		node->status_reads++;
 	return err;
 }
 

@@ -62,6 +62,7 @@ struct ch_node {
 	 */
 	unsigned int msg_left;
 	u64 messages;		/* SPI messages: xfer_msg calls, xfer as one */
+	u64 status_reads;	/* of them, a READ STATUS alone */
 	u64 irq_calls;		/* mcp2510_irq_handle() calls by ch_service() */
 	/* a broken board: MISO always reads this (-1: a working line) */
 	int miso_stuck;
