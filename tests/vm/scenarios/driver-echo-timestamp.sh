@@ -1,5 +1,5 @@
 #!/bin/sh
-# vm-run: --nodes 2 --variant mcp2515 --sim-param int_trigger=edge-falling
+# vm-run: --nodes 2 --variant mcp2515 --sim-param int_trigger=edge-falling --sim-param time_scale=4
 # vm-kernels: 6.12 debug
 # Timestamps on a sending interface: can0 and can1 send to each other at
 # once, and candump on can0 sees can0's own frames (their echoes) among
@@ -7,11 +7,16 @@
 # gets them: an echo is stamped when its transmission was seen complete,
 # as a received frame is when it was seen, not later when the stack takes
 # it.  On an edge-triggered INT one hold of the chip lock may read a TX
-# completion and, in a later pass, a received frame.
+# completion and, in a later pass, a received frame.  Each sender's queue
+# holds its whole burst (cangen -i would drop what finds it full), and bus
+# time runs 4 times slower than real time, so that the debug kernel under
+# TCG takes every frame.
 set -eu
 . /lib/rig.sh
 
 FRAMES=300
+ip link set can0 txqueuelen $((FRAMES + 16))
+ip link set can1 txqueuelen $((FRAMES + 16))
 can_up can0 500000
 can_up can1 500000
 dump_start can0 100000 /tmp/dump.txt -t a
