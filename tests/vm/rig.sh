@@ -192,6 +192,26 @@ can_state_is() {
 	ip -details link show "$1" | grep -q "state $2 "
 }
 
+# carrier IF / operstate IF: the link's carrier (0 when IF is gone) and
+# operstate, from sysfs.
+carrier() { cat "/sys/class/net/$1/carrier" 2>/dev/null || echo 0; }
+operstate() { cat "/sys/class/net/$1/operstate"; }
+# no_carrier IF: without starting a process, so a bus-off is seen at once.
+no_carrier() {
+	read -r _c <"/sys/class/net/$1/carrier" 2>/dev/null || _c=0
+	[ "$_c" = 0 ]
+}
+# on_bus IF: error-active, carrier on, operstate up.
+on_bus() {
+	can_state_is "$1" ERROR-ACTIVE && [ "$(carrier "$1")" = 1 ] &&
+		[ "$(operstate "$1")" = up ]
+}
+# off_bus IF: bus-off, carrier off, operstate down.
+off_bus() {
+	can_state_is "$1" BUS-OFF && [ "$(carrier "$1")" = 0 ] &&
+		[ "$(operstate "$1")" = down ]
+}
+
 # chips_load DRIVER: new simulated chips, as /init loads them before a
 # scenario (VM_NODES chips of VM_VARIANT, VM_SIM_PARAMS), bound to DRIVER
 # (mcp2510 or mcp251x) instead of VM_DRIVER: what was loaded goes first,

@@ -30,27 +30,10 @@ can_stat() {
 		split("restarts bus_errors arbit_lost warn passive bus_off", n)
 		for (i = 1; i <= 6; i++) if (n[i] == k) print $i }'
 }
-carrier() { cat "/sys/class/net/$1/carrier" 2>/dev/null || echo 0; }
-# no_carrier IF: without starting a process, so a bus-off is seen at once.
-no_carrier() {
-	read -r _c <"/sys/class/net/$1/carrier" 2>/dev/null || _c=0
-	[ "$_c" = 0 ]
-}
-operstate() { cat "/sys/class/net/$1/operstate"; }
 stat_is() { [ "$(can_stat "$1" "$2")" -eq "$3" ]; }
 log_count() { dmesg | grep -c "$1" || true; }
 log_more() { [ "$(log_count "$1")" -gt "$2" ]; }
 
-# on_bus IF: error-active, carrier on, operstate up.
-on_bus() {
-	can_state_is "$1" ERROR-ACTIVE && [ "$(carrier "$1")" = 1 ] &&
-		[ "$(operstate "$1")" = up ]
-}
-# off_bus IF: bus-off, carrier off, operstate down.
-off_bus() {
-	can_state_is "$1" BUS-OFF && [ "$(carrier "$1")" = 0 ] &&
-		[ "$(operstate "$1")" = down ]
-}
 describe() {
 	echo "$1: $(ip -details link show "$1" | grep -o 'state [A-Z-]*' | tail -1)," \
 		"carrier $(carrier "$1"), operstate $(operstate "$1")," \

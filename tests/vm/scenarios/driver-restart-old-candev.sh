@@ -49,17 +49,6 @@ else
 	echo "can-dev: the kernel's own"
 fi
 
-carrier() { cat "/sys/class/net/$1/carrier" 2>/dev/null || echo 0; }
-no_carrier() { [ "$(carrier "$1")" = 0 ]; }
-operstate() { cat "/sys/class/net/$1/operstate"; }
-on_bus() {
-	can_state_is "$1" ERROR-ACTIVE && [ "$(carrier "$1")" = 1 ] &&
-		[ "$(operstate "$1")" = up ]
-}
-off_bus() {
-	can_state_is "$1" BUS-OFF && [ "$(carrier "$1")" = 0 ] &&
-		[ "$(operstate "$1")" = down ]
-}
 describe() {
 	echo "$1: $(ip -details link show "$1" | grep -o 'state [A-Z-]*' | tail -1)," \
 		"carrier $(carrier "$1"), operstate $(operstate "$1")," \
