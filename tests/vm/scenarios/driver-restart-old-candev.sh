@@ -18,7 +18,7 @@ set -eu
 . /lib/rig.sh
 
 mods=/opt/mcp2510/modules
-old=$mods/old-can-dev.ko
+old=$mods/old-can-dev/can-dev.ko
 case $VM_KERNEL in
 6.1 | debug) [ -f "$old" ] || fail "no $old for kernel $VM_KERNEL (make old-can-dev-modules)" ;;
 *) old= ;;
