@@ -24,8 +24,11 @@ static int flags_count(u8 flags)
 	return n;
 }
 
-/* One pass; returns the number of flags handled, 0 when none were set. */
-static int irq_pass(struct mcp2510_chip *chip)
+/*
+ * One pass; returns the number of flags handled, 0 when none were set.
+ * *@chained: the pass took a frame on the previous one's READ STATUS.
+ */
+static int irq_pass(struct mcp2510_chip *chip, bool *chained)
 {
 	struct irq_flags f;
 	int err;
@@ -38,7 +41,7 @@ static int irq_pass(struct mcp2510_chip *chip)
 	if (chip->events->rx_pass)
 		chip->events->rx_pass(chip->ctx, rx_first_waited(chip, &f));
 	chip->irq.flags_cleared = false;
-	chip->irq.rx_chained = f.rx_continued;
+	*chained = f.rx_continued;
 	err = rx_take(chip, f.intf);
 	if (err)
 		return err;
@@ -60,11 +63,11 @@ static int irq_pass(struct mcp2510_chip *chip)
  * this one, or, when this pass went on from the previous one's (a
  * flood), from a few polls.  Returns 1, 0 or a transfer error.
  */
-static int rx_more(struct mcp2510_chip *chip)
+static int rx_more(struct mcp2510_chip *chip, bool chained)
 {
 	if (rx_status_more(chip))
 		return 1;
-	if (!chip->irq.rx_chained)
+	if (!chained)
 		return 0;
 	return rx_poll(chip);
 }
@@ -73,11 +76,12 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 {
 	unsigned int pass;
 	int handled = 0, n, more;
+	bool chained = false;
 
 	/* the first pass reads the flags: anything may have come meanwhile */
 	chip->irq.rx_status = 0;
 	for (pass = 0; pass < MCP2510_IRQ_MAX_PASSES; pass++) {
-		n = irq_pass(chip);
+		n = irq_pass(chip, &chained);
 		if (n < 0)
 			return n;
 		handled += n;
@@ -87,7 +91,7 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 		 * other users of the chip that wait for the handler.
 		 */
 		if (pass + 1 < MCP2510_IRQ_RX_PASSES) {
-			more = rx_more(chip);
+			more = rx_more(chip, chained);
 			if (more < 0)
 				return more;
 			if (more)

@@ -209,7 +209,6 @@ struct mcp2510_chip {
 		bool flags_cleared;	/* by a reset or wake-up: see rx_pass */
 		/* READ STATUS after the pass's last release, 0: none */
 		u8 rx_status;
-		bool rx_chained;	/* the last pass went on from one */
 	} irq;
 };
 
