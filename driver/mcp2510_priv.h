@@ -15,6 +15,7 @@
 #include <linux/skbuff.h>
 #include <linux/gpio/driver.h>
 #include <linux/mutex.h>
+#include <linux/spi/spi.h>
 #include <linux/spinlock.h>
 #include <linux/workqueue.h>
 
@@ -100,6 +101,8 @@ struct mcp2510_priv {
 	struct mcp2510_chip chip;
 	u8 *spi_tx;			/* DMA-safe bounce buffers, under lock */
 	u8 *spi_rx;
+	/* a message's transfers: up to two per period (spi.c), under lock */
+	struct spi_transfer spi_xfers[2 * MCP2510_XFER_MSG_MAX];
 	unsigned long irq_flags;	/* trigger type for request_irq */
 
 	/*

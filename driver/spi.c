@@ -29,29 +29,6 @@ void mcp2510_unlock(struct mcp2510_priv *priv)
 	mutex_unlock(&priv->lock);
 }
 
-static int mcp2510_spi_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
-{
-	struct mcp2510_priv *priv = ctx;
-	struct spi_transfer xfer = {
-		.tx_buf = priv->spi_tx,
-		.rx_buf = priv->spi_rx,
-		.len = len,
-	};
-	int ret;
-
-	lockdep_assert_held(&priv->lock);
-	if (len > MCP2510_SPI_BUF_LEN)
-		return -EMSGSIZE;
-
-	memcpy(priv->spi_tx, tx, len);
-	ret = spi_sync_transfer(priv->spi, &xfer, 1);
-	if (ret)
-		return ret;
-	if (rx)
-		memcpy(rx, priv->spi_rx, len);
-	return 0;
-}
-
 /*
  * Chip select high between two periods of one message: the data sheets
  * ask for 50 ns (MCP2515) and 100 ns (MCP2510) at least.  Without an
@@ -59,6 +36,28 @@ static int mcp2510_spi_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
  * receive-order check relies on being short.
  */
 #define MCP2510_CS_HIGH_NS	100
+
+/*
+ * The transfers of one period at @off in the bounce buffers: 1, or 2
+ * with chip select held low between them (mcp2510_xfer_first_len()).
+ */
+static unsigned int mcp2510_spi_period(struct mcp2510_priv *priv,
+				       struct spi_transfer *t,
+				       unsigned int off, unsigned int len)
+{
+	unsigned int first = mcp2510_xfer_first_len(len,
+						    priv->spi->max_speed_hz);
+
+	t[0].tx_buf = priv->spi_tx + off;
+	t[0].rx_buf = priv->spi_rx + off;
+	t[0].len = first;
+	if (first == len)
+		return 1;
+	t[1].tx_buf = priv->spi_tx + off + first;
+	t[1].rx_buf = priv->spi_rx + off + first;
+	t[1].len = len - first;
+	return 2;
+}
 
 /*
  * Several CS-low periods in one spi_message: the controller raises chip
@@ -69,34 +68,40 @@ static int mcp2510_spi_xfer_msg(void *ctx, const struct mcp2510_xfer *x,
 				unsigned int n)
 {
 	struct mcp2510_priv *priv = ctx;
-	struct spi_transfer xfers[MCP2510_XFER_MSG_MAX] = { };
-	unsigned int i, off = 0;
+	struct spi_transfer *t = priv->spi_xfers;
+	unsigned int i, nt = 0, off = 0;
 	int ret;
 
 	lockdep_assert_held(&priv->lock);
-	if (!n || n > ARRAY_SIZE(xfers))
+	if (!n || n > MCP2510_XFER_MSG_MAX)
 		return -EINVAL;
+	memset(priv->spi_xfers, 0, sizeof(priv->spi_xfers));
 	for (i = 0; i < n; i++) {
 		if (x[i].len > MCP2510_SPI_BUF_LEN - off)
 			return -EMSGSIZE;
 		memcpy(priv->spi_tx + off, x[i].tx, x[i].len);
-		xfers[i].tx_buf = priv->spi_tx + off;
-		xfers[i].rx_buf = priv->spi_rx + off;
-		xfers[i].len = x[i].len;
+		nt += mcp2510_spi_period(priv, t + nt, off, x[i].len);
 		if (i + 1 < n) {
-			xfers[i].cs_change = 1;
-			xfers[i].cs_change_delay.value = MCP2510_CS_HIGH_NS;
-			xfers[i].cs_change_delay.unit = SPI_DELAY_UNIT_NSECS;
+			t[nt - 1].cs_change = 1;
+			t[nt - 1].cs_change_delay.value = MCP2510_CS_HIGH_NS;
+			t[nt - 1].cs_change_delay.unit = SPI_DELAY_UNIT_NSECS;
 		}
 		off += x[i].len;
 	}
-	ret = spi_sync_transfer(priv->spi, xfers, n);
+	ret = spi_sync_transfer(priv->spi, t, nt);
 	if (ret)
 		return ret;
-	for (i = 0; i < n; i++)
+	for (i = 0, off = 0; i < n; off += x[i].len, i++)
 		if (x[i].rx)
-			memcpy(x[i].rx, xfers[i].rx_buf, x[i].len);
+			memcpy(x[i].rx, priv->spi_rx + off, x[i].len);
 	return 0;
+}
+
+static int mcp2510_spi_xfer(void *ctx, const u8 *tx, u8 *rx, unsigned int len)
+{
+	const struct mcp2510_xfer x = { .tx = tx, .rx = rx, .len = len };
+
+	return mcp2510_spi_xfer_msg(ctx, &x, 1);
 }
 
 static void mcp2510_spi_delay_us(void *ctx, unsigned int us)

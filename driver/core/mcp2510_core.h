@@ -50,6 +50,14 @@ struct mcp2510_xfer {
 	unsigned int len;
 };
 
+/*
+ * How many bytes of a @len-byte period a transport sends in its first
+ * transfer at @speed_hz, chip select held low into a second with the
+ * rest: all of them unless two transfers keep a common controller in
+ * its polling mode where one does not (spi.c).
+ */
+unsigned int mcp2510_xfer_first_len(unsigned int len, u32 speed_hz);
+
 /* Most chip-select periods the core puts in one message. */
 #define MCP2510_XFER_MSG_MAX	4
 

@@ -15,20 +15,28 @@
 
 /*
  * The transfer that loads a frame into @slot, in @tx: SIDH..D(len-1)
- * and, unless the MCP2515's LOAD TX BUFFER can be used because TXBnCTRL
- * already holds @txp, TXBnCTRL in front.  Returns its length.
+ * and, unless TXBnCTRL already holds @txp, TXBnCTRL in front.  Without
+ * it the MCP2515 uses LOAD TX BUFFER, the MCP2510 a WRITE from SIDH: a
+ * lone frame, which always takes the top key, then fits in a transfer
+ * spi-bcm2835 polls at 5 MHz (see mcp2510_xfer_first_len()).  Returns
+ * its length.
  */
 static unsigned int tx_load_prepare(const struct mcp2510_chip *chip,
 				    unsigned int slot, u8 txp, const u8 *regs,
 				    unsigned int nregs, u8 tx[TX_LOAD_MAX])
 {
+	bool txp_held = txp == chip->tx.prio[slot] &&
+			!(chip->tx.prio_unknown & BIT(slot));
 	unsigned int hdr;
 
-	if (chip->variant->has_buffer_instrs && txp == chip->tx.prio[slot] &&
-	    !(chip->tx.prio_unknown & BIT(slot))) {
+	if (txp_held && chip->variant->has_buffer_instrs) {
 		tx[0] = MCP2515_INSTR_LOAD_TX_BUFFER |
 			MCP2515_LOAD_TXB_SIDH(slot);
 		hdr = 1;
+	} else if (txp_held) {
+		tx[0] = MCP2510_INSTR_WRITE;
+		tx[1] = MCP2510_REG_TXBSIDH(slot);
+		hdr = 2;
 	} else {
 		tx[0] = MCP2510_INSTR_WRITE;
 		tx[1] = MCP2510_REG_TXBCTRL(slot);
@@ -46,7 +54,8 @@ static void tx_load_done(struct mcp2510_chip *chip, unsigned int slot,
 	if (!err) {
 		chip->tx.prio[slot] = txp;
 		chip->tx.prio_unknown &= ~BIT(slot);
-	} else if (tx[0] == MCP2510_INSTR_WRITE) {
+	} else if (tx[0] == MCP2510_INSTR_WRITE &&
+		   tx[1] == MCP2510_REG_TXBCTRL(slot)) {
 		chip->tx.prio_unknown |= BIT(slot);
 	}
 }

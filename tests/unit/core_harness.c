@@ -36,11 +36,17 @@ static void ch_chip_spi(struct ch_node *node, struct sim_spi_msg *m,
 			const u8 *tx, u8 *rx, unsigned int len)
 {
 	struct sim_spi_bus *sb = &node->rig->spi;
+	u32 max_hz = sim_chip_sck_max_hz(&node->sim);
+	unsigned int first;
 	u64 xfer_ns;
 
 	if (sb->timing.enabled) {
-		xfer_ns = sim_spi_xfer_ns(sb, len, node->spi_hz,
-					  sim_chip_sck_max_hz(&node->sim));
+		/* in transfers as the driver's transport splits it */
+		first = mcp2510_xfer_first_len(len, node->spi_hz ? node->spi_hz :
+							 max_hz);
+		xfer_ns = sim_spi_xfer_ns(sb, first, node->spi_hz, max_hz) +
+			  sim_spi_xfer_ns(sb, len - first, node->spi_hz,
+					  max_hz);
 		sim_bus_advance_to(&node->rig->bus,
 				   sim_spi_msg_period(sb, m, xfer_ns));
 	}

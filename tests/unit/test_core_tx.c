@@ -412,6 +412,26 @@ static void test_scheduler_against_one_buffer(void **state)
 	assert_true(use_three > use_one);
 }
 
+/*
+ * A period one byte too long to be polled by spi-bcm2835 (the load of a
+ * frame at the MCP2510's 5 MHz) goes as two polled transfers; one that
+ * is short enough, or too long for two, stays whole.
+ */
+static void test_load_split_for_polled_transfers(void **state)
+{
+	(void)state;
+	assert_int_equal(mcp2510_xfer_first_len(16, 5000000), 8);
+	assert_int_equal(mcp2510_xfer_first_len(15, 5000000), 15);
+	assert_int_equal(mcp2510_xfer_first_len(30, 5000000), 15);
+	assert_int_equal(mcp2510_xfer_first_len(31, 5000000), 31);
+	assert_int_equal(mcp2510_xfer_first_len(16, 10000000), 16);
+	assert_int_equal(mcp2510_xfer_first_len(33, 10000000), 16);
+	assert_int_equal(mcp2510_xfer_first_len(130, 10000000), 130);
+	/* too slow a clock to poll anything: nothing gained by splitting */
+	assert_int_equal(mcp2510_xfer_first_len(2, 500000), 2);
+	assert_int_equal(mcp2510_xfer_first_len(2, 0), 2);
+}
+
 static void test_spi_cost_per_8_byte_frame(void **state)
 {
 	static const enum mcp2510_model models[] = {
@@ -445,8 +465,12 @@ static void test_idle_submit_and_completion_cost(void **state)
 		enum mcp2510_model model;
 		u64 first, second;
 	} cases[] = {
-		/* WRITE TXBnCTRL..D7 (16) + RTS (1) */
-		{ MCP2510_MODEL_MCP2510, 17, 17 },
+		/*
+		 * WRITE TXBnCTRL..D7 (16) + RTS (1), then WRITE SIDH..D7
+		 * (15): TXP already right, and one byte less is a transfer
+		 * spi-bcm2835 polls at 5 MHz
+		 */
+		{ MCP2510_MODEL_MCP2510, 17, 16 },
 		/* then LOAD TX BUFFER SIDH..D7 (14) + RTS: TXP already right */
 		{ MCP2510_MODEL_MCP2515, 17, 15 },
 	};
@@ -672,6 +696,7 @@ int main(void)
 		cmocka_unit_test(test_stream_mcp2515),
 		cmocka_unit_test(test_scheduler_against_one_buffer),
 		cmocka_unit_test(test_spi_cost_per_8_byte_frame),
+		cmocka_unit_test(test_load_split_for_polled_transfers),
 		cmocka_unit_test(test_stream_with_transport_errors),
 		cmocka_unit_test(test_failed_submit_sends_nothing),
 		cmocka_unit_test(test_failed_rts_that_reached_the_chip),
