@@ -6,7 +6,9 @@
  * (irq_error.c) and sent frames (irq_tx.c), then clears the flags.  A
  * pass that took a frame and saw the next arrive is followed by one that
  * takes it, whatever the trigger of the line, and a run of such passes
- * polls for the next frame before it ends (irq_rx.c, rx_poll()).
+ * polls for the next frame before it ends (irq_rx.c, rx_poll()); a pass
+ * that left a drain waiting for its last frame polls for that frame's
+ * end (irq_tx.c, tx_drain_poll()).
  *
  * TX, error and wake-up flags are cleared with one BIT MODIFY naming only
  * the flags handled, so a flag raised meanwhile survives and asserts INT
@@ -80,6 +82,7 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 
 	/* the first pass reads the flags: anything may have come meanwhile */
 	chip->irq.rx_status = 0;
+	chip->irq.tx_polled = false;
 	for (pass = 0; pass < MCP2510_IRQ_MAX_PASSES; pass++) {
 		n = irq_pass(chip, &chained);
 		if (n < 0)
@@ -92,6 +95,8 @@ int mcp2510_irq_handle(struct mcp2510_chip *chip)
 		 */
 		if (pass + 1 < MCP2510_IRQ_RX_PASSES) {
 			more = rx_more(chip, chained);
+			if (!more)
+				more = tx_drain_poll(chip);
 			if (more < 0)
 				return more;
 			if (more)

@@ -113,6 +113,20 @@ static int flags_read_txreq(struct mcp2510_chip *chip, struct irq_flags *f)
 	return 0;
 }
 
+/*
+ * READ STATUS, or what a drain's poll read after the previous pass's
+ * clear and RTS: nothing has changed the flags since.
+ */
+static int status_get(struct mcp2510_chip *chip, u8 *status)
+{
+	if (chip->irq.tx_polled) {
+		chip->irq.tx_polled = false;
+		*status = chip->irq.tx_poll_status;
+		return 0;
+	}
+	return mcp2510_read_status(chip, status);
+}
+
 int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 {
 	u8 status;
@@ -122,6 +136,7 @@ int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 	if (flags_from_rx_status(chip, f))
 		return 0;
 	if (full_read_due(chip)) {
+		chip->irq.tx_polled = false;
 		err = flags_read_full(chip, f);
 		if (!err && chip->ctrlmode & CAN_CTRLMODE_ONE_SHOT &&
 		    f->intf & chip->inte & MCP2510_INT_MERR &&
@@ -129,7 +144,7 @@ int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 			err = flags_read_txreq(chip, f);
 	} else {
 		chip->irq.passes_to_full_read--;
-		err = mcp2510_read_status(chip, &status);
+		err = status_get(chip, &status);
 		if (err)
 			return err;
 		status_decode(status, f);

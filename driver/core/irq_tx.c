@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0
 /*
  * The TX side of a pass: which pending buffers the flags show sent or,
- * in one-shot mode, dropped, and which TXnIF flags the pass may clear.
+ * in one-shot mode, dropped, and which TXnIF flags the pass may clear;
+ * and the polls that end a drain without waiting for the interrupt.
  */
 #include "mcp2510_core_priv.h"
 
@@ -35,4 +36,39 @@ u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f)
 		if (txif & BIT(n) & ~(pending & ~finished))
 			clear |= MCP2510_INT_TX(n);
 	return clear;
+}
+
+/*
+ * A drain (tx.c): frames are staged behind the last pending one and go
+ * with one RTS once it is sent.  Waiting for its TXnIF to assert INT
+ * leaves the bus idle for an interrupt's latency and a flags read before
+ * that RTS; polling READ STATUS for its end leaves it idle for one poll
+ * at most.  Only with one frame left, already on its way when its
+ * predecessor's completion was handled; a frame received meanwhile also
+ * ends the polls.  The next pass decodes the status read here.
+ */
+int tx_drain_poll(struct mcp2510_chip *chip)
+{
+	u8 pending = mcp2510_tx_pending(chip), txreq = 0, status;
+	unsigned int i, n;
+	int err;
+
+	/* one frame left */
+	if (!chip->tx.staged || !pending || pending & (pending - 1))
+		return 0;
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (pending & BIT(n))
+			txreq = MCP2510_STATUS_TXREQ(n);
+	for (i = 0; i < MCP2510_IRQ_TX_POLLS; i++) {
+		err = mcp2510_read_status(chip, &status);
+		if (err)
+			return err;
+		if (!(status & txreq) ||
+		    status & (MCP2510_STATUS_RX0IF | MCP2510_STATUS_RX1IF)) {
+			chip->irq.tx_polled = true;
+			chip->irq.tx_poll_status = status;
+			return 1;
+		}
+	}
+	return 0;
 }

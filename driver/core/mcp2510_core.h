@@ -217,6 +217,9 @@ struct mcp2510_chip {
 		bool flags_cleared;	/* by a reset or wake-up: see rx_pass */
 		/* READ STATUS after the pass's last release, 0: none */
 		u8 rx_status;
+		/* a drain's poll (irq_tx.c) read this, for the next pass */
+		bool tx_polled;
+		u8 tx_poll_status;
 	} irq;
 };
 
@@ -352,6 +355,12 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
  * enough to bridge one frame at 1 Mbit/s on a Raspberry Pi's SPI.
  */
 #define MCP2510_IRQ_RX_POLLS	4
+/*
+ * READ STATUS polls for the end of the last frame before a drain's RTS
+ * (irq_tx.c): the rest of a frame at 1 Mbit/s once its predecessor's
+ * completion is handled, on a Raspberry Pi's SPI.
+ */
+#define MCP2510_IRQ_TX_POLLS	8
 /* Read CANINTF/EFLG at least every this many passes, even under RX load. */
 #define MCP2510_IRQ_FULL_READ_EVERY	8
 /*
@@ -360,7 +369,9 @@ int mcp2510_tx_submit(struct mcp2510_chip *chip, const struct can_frame *cf);
  * but a pass that took a frame and saw the next one arrive goes on, up to
  * MCP2510_IRQ_RX_PASSES passes; the last pass of such a run polls READ
  * STATUS up to MCP2510_IRQ_RX_POLLS times for one more frame before the
- * call returns; with chip->irq_edge set it loops until
+ * call returns, and one that left a drain waiting for the last frame
+ * polls up to MCP2510_IRQ_TX_POLLS times for its end; with chip->irq_edge
+ * set it loops until
  * nothing is pending.  The loop is
  * bounded: a chip that never stops asserting returns -EAGAIN and counts an
  * irq storm.  Returns the number of flags handled.  A received frame is

@@ -96,6 +96,8 @@ bool rx_first_waited(const struct mcp2510_chip *chip,
 /* irq_tx.c */
 /* Sent and dropped frames; returns the TXnIF bits to clear. */
 u8 handle_tx(struct mcp2510_chip *chip, const struct irq_flags *f);
+/* Poll for the end of a drain: 1 when a pass is due, 0, or an error. */
+int tx_drain_poll(struct mcp2510_chip *chip);
 
 /* irq_error.c */
 int handle_errors(struct mcp2510_chip *chip, const struct irq_flags *f);

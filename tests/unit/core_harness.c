@@ -242,6 +242,23 @@ static void ch_irq_latency(struct ch_node *node)
 							sim_bus_now(bus)));
 }
 
+/* Frames staged, and every frame the core counts as pending sent. */
+static bool ch_drain_waits(const struct ch_node *node)
+{
+	const struct mcp2510_chip *c = &node->core;
+	u8 pending = c->tx.busy & ~c->tx.done & ~c->tx.staged;
+	unsigned int n;
+
+	if (!c->tx.staged)
+		return false;
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (pending & BIT(n) &&
+		    sim_chip_peek(&node->sim, MCP2510_REG_TXBCTRL(n)) &
+		    MCP2510_TXBCTRL_TXREQ)
+			return false;
+	return true;
+}
+
 unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret)
 {
 	unsigned int calls = 0;
@@ -249,6 +266,8 @@ unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret)
 
 	while (calls < max && ch_int_asserted(node)) {
 		ch_irq_latency(node);
+		if (ch_drain_waits(node))
+			node->drain_waits++;
 		ret = mcp2510_irq_handle(&node->core);
 		node->irq_calls++;
 		calls++;

@@ -44,6 +44,7 @@ struct stream {
 	u32 phantom_every;	/* competing frames every n frames */
 	bool one_buffer;	/* a plain FIFO: one frame in the chip at a time */
 	const struct sim_spi_timing *timing;	/* SPI time; NULL: none */
+	bool alone;		/* no receiving chip: the phantom acknowledges */
 	/* progress */
 	u32 submitted, received, done, attempts, failed;
 	u8 fifo[4];		/* slots in submission order */
@@ -54,6 +55,9 @@ struct stream {
 	/* bus monitor */
 	u32 frames_on_bus, gaps;
 	u64 first_start_ns, last_end_ns, frames_ns;
+	/* the sender's, at the end */
+	u32 stages;
+	u64 drain_waits;
 };
 
 static struct stream *current;
@@ -166,7 +170,10 @@ static void stream_run(struct stream *s, enum mcp2510_model model)
 	tx->ev.on_tx_done = stream_on_tx_done;
 	sim_bus_set_monitor(&rig->bus, stream_monitor, s);
 	assert_int_equal(ch_start(tx, BITRATE, 0), 0);
-	assert_int_equal(ch_start(rx, BITRATE, 0), 0);
+	if (s->alone)
+		sim_phantom_attach(&rig->bus, BITRATE);
+	else
+		assert_int_equal(ch_start(rx, BITRATE, 0), 0);
 	/* start-up at no SPI cost; the stream pays */
 	if (s->timing)
 		rig->spi.timing = *s->timing;
@@ -180,6 +187,18 @@ static void stream_run(struct stream *s, enum mcp2510_model model)
 			    s->submitted % s->phantom_every == 0)
 				sim_phantom_send(&rig->bus, &phantom, 0);
 		}
+		/*
+		 * INT asserted during the submits: serviced before the bus
+		 * goes on, as the driver's handler runs once they release
+		 * the chip.
+		 */
+		if (ch_int_asserted(tx)) {
+			int ret;
+
+			ch_service(tx, 16, &ret);
+			assert_true(ret >= 0);
+			continue;
+		}
 		/* with SPI time the last completion may come after the bus idles */
 		if (!ch_step(rig)) {
 			assert_non_null(s->timing);
@@ -189,10 +208,10 @@ static void stream_run(struct stream *s, enum mcp2510_model model)
 	}
 	ch_run_idle(rig, 10 * MS);
 
-	if (!s->timing)
+	if (!s->timing && !s->alone)
 		assert_int_equal(s->received, s->total);
 	/* the competing frames really went in between */
-	if (s->phantom_every)
+	if (s->phantom_every && !s->alone)
 		assert_int_equal(rx->ev.rx_count - s->received,
 				 s->total / s->phantom_every);
 	assert_int_equal(s->done, s->total);
@@ -217,6 +236,8 @@ static void stream_run(struct stream *s, enum mcp2510_model model)
 		      (double)(irq_start.bytes - s->tx_bytes) / s->total,
 		      (double)(irq_start.transfers - s->tx_transfers) /
 		      s->total, s->failed);
+	s->stages = tx->core.tx.stages;
+	s->drain_waits = tx->drain_waits;
 	/* keys walk down one per frame: a restart about every nine */
 	assert_true(tx->core.tx.stages <= 2 * (s->total / 9 + 1) +
 		    2 * s->failed);
@@ -410,6 +431,41 @@ static void test_scheduler_against_one_buffer(void **state)
 	print_message("bus use at 1 Mbit/s: three buffers %.1f%%, one buffer %.1f%%\n",
 		      100 * use_three, 100 * use_one);
 	assert_true(use_three > use_one);
+}
+
+/*
+ * A drain on a Raspberry Pi's costs (the calibrated `pi` profile at 1x,
+ * 1 Mbit/s, the phantom acknowledging): once the last pending frame is
+ * on its way, the handler polls for its end, so that the staged frames'
+ * RTS follows it by a message rather than by an interrupt's latency and
+ * a flags read.  Counted by the handler calls a drain waited for: most
+ * drains are bridged by the polls.
+ */
+static void test_drain_does_not_wait_for_int(void **state)
+{
+	static const enum mcp2510_model models[] = {
+		MCP2510_MODEL_MCP2510, MCP2510_MODEL_MCP2515,
+	};
+	struct sim_spi_timing pi;
+	unsigned int i;
+
+	(void)state;
+	assert_int_equal(sim_spi_profile_timing(SIM_SPI_PROFILE_PI, 100, &pi),
+			 0);
+	for (i = 0; i < ARRAY_SIZE(models); i++) {
+		struct stream s = { .total = 1000, .full_length = true,
+				    .timing = &pi, .alone = true };
+
+		stream_run(&s, models[i]);
+		print_message("%s under pi 1x: bus use %.1f%%, %u frames staged, %llu drains waited for INT\n",
+			      mcp2510_variant_get(models[i])->name,
+			      100.0 * s.frames_ns /
+			      (s.last_end_ns - s.first_start_ns),
+			      s.stages, (unsigned long long)s.drain_waits);
+		/* drains there were, most of them bridged */
+		assert_true(s.stages >= 20);
+		assert_true(s.drain_waits * 4 <= s.stages);
+	}
 }
 
 /*
@@ -696,6 +752,7 @@ int main(void)
 		cmocka_unit_test(test_stream_mcp2515),
 		cmocka_unit_test(test_scheduler_against_one_buffer),
 		cmocka_unit_test(test_spi_cost_per_8_byte_frame),
+		cmocka_unit_test(test_drain_does_not_wait_for_int),
 		cmocka_unit_test(test_load_split_for_polled_transfers),
 		cmocka_unit_test(test_stream_with_transport_errors),
 		cmocka_unit_test(test_failed_submit_sends_nothing),

@@ -4,10 +4,13 @@
 # vm-kernels: 6.12 debug
 # FIFO order when frames lose arbitration: can0 sends a burst of
 # sequence-numbered frames (can-flood) through its three TX buffers while
-# the phantom node keeps putting a frame of higher priority (ID 001) on
-# the bus.  The phantom's frame waits for the frame on the bus to end and
-# then meets can0's next one at the start of the next: can0 loses
-# arbitration, and sends that frame again after the phantom's.  can1
+# the phantom node keeps putting short runs of frames of higher priority
+# (ID 001) on the bus.  The phantom's frame waits for the frame on the bus
+# to end and then meets can0's next one at the start of the next: can0
+# loses arbitration to each frame of the run, and sends its frame after
+# them.  Runs rather than single frames, so that a guest whose loop runs
+# only a few times during the burst (the debug kernel) still makes can0
+# lose often.  can1
 # acknowledges; the bus monitor must show the whole burst, each frame
 # once, in the order written.  Bus time runs 20 times slower than real
 # time (a frame at 1 Mbit/s takes about 2 ms), so that the monitor's
@@ -30,10 +33,10 @@ can-flood check $frames -i 123 -o -t 5000 -f "$SIM/monitor" >/tmp/bus.txt &
 check_pid=$!
 wait_for 10 grep -q ready /tmp/bus.txt || fail "can-flood check did not start"
 
-# The competitor: a frame every 10 ms, about a tenth of the bus.
+# The competitor: a run of four frames every 10 ms.
 (
 	while [ ! -e /tmp/stop ]; do
-		echo "001#00 $bitrate" >"$SIM/inject" 2>/dev/null || true
+		echo "4 001#00 $bitrate" >"$SIM/flood" 2>/dev/null || true
 		nap 0.01
 	done
 ) &
