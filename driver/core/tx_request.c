@@ -152,18 +152,19 @@ static int tx_kick_due(struct mcp2510_chip *chip, u8 *slots)
 /*
  * Request the staged frames once nothing older is pending: they hold the
  * top keys, in queue order, and go with one RTS.  @intf_clear, the
- * CANINTF flags an interrupt pass handled, is cleared first in the same
- * message, so that after a drain the RTS follows the clear by a
- * chip-select period rather than by a message.  A failed message stops
- * at the transfer that failed: an RTS that got through had the clear
- * before it, and READ STATUS tells whether it did.
+ * CANINTF flags an interrupt pass handled, is cleared in the same
+ * message, after the RTS: the bus, idle since the last frame, waits for
+ * the RTS alone.  The flags cleared are those of buffers no longer
+ * pending, none of them requested here.  A failed message stops at the
+ * transfer that failed: READ STATUS tells whether the RTS got through,
+ * and a flag left set is cleared by the next pass.
  */
 int mcp2510_tx_kick(struct mcp2510_chip *chip, u8 intf_clear)
 {
 	const u8 modify[4] = { MCP2510_INSTR_BIT_MODIFY, MCP2510_REG_CANINTF,
 			       intf_clear, 0 };
-	struct mcp2510_xfer x[2] = { { modify, NULL, sizeof(modify) } };
-	unsigned int nx = intf_clear ? 1 : 0;
+	struct mcp2510_xfer x[2];
+	unsigned int nx = 0;
 	int ret, err;
 	u8 rts, slots;
 
@@ -174,6 +175,8 @@ int mcp2510_tx_kick(struct mcp2510_chip *chip, u8 intf_clear)
 		rts = MCP2510_INSTR_RTS | slots;
 		x[nx++] = (struct mcp2510_xfer){ &rts, NULL, sizeof(rts) };
 	}
+	if (intf_clear)
+		x[nx++] = (struct mcp2510_xfer){ modify, NULL, sizeof(modify) };
 	if (!nx)
 		return 0;
 	err = mcp2510_xfer_msg(chip, x, nx);

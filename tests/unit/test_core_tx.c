@@ -694,11 +694,28 @@ static void test_restart_drops_queued_frames(void **state)
 	ch_rig_free(rig);
 }
 
+/* Staged frames whose TXREQ was set after the first period of a message. */
+static u8 drain_staged, drain_requested_first;
+
+static void drain_after_xfer(struct ch_node *node)
+{
+	unsigned int n;
+
+	if (node->msg_left != 1 || drain_requested_first)
+		return;
+	for (n = 0; n < MCP2510_TXB_COUNT; n++)
+		if (drain_staged & BIT(n) &&
+		    sim_chip_peek(&node->sim, MCP2510_REG_TXBCTRL(n)) &
+		    MCP2510_TXBCTRL_TXREQ)
+			drain_requested_first |= BIT(n);
+}
+
 /*
  * The drain: with the keys used up a frame is staged until the pending
  * ones are gone, and the pass that sees the last of them go clears their
- * TXnIF and requests the staged frame in one message, so the bus waits a
- * chip-select period after the clear rather than another message.
+ * TXnIF and requests the staged frame in one message, the RTS first, so
+ * the bus waits one chip-select period for it rather than two or another
+ * message.
  */
 static void test_drain_clears_and_requests_in_one_message(void **state)
 {
@@ -730,9 +747,14 @@ static void test_drain_clears_and_requests_in_one_message(void **state)
 		sim_bus_advance(&rig->bus, MS);
 		assert_true(ch_int_asserted(tx));
 		messages = tx->messages;
+		drain_staged = tx->core.tx.staged;
+		drain_requested_first = 0;
+		tx->after_xfer = drain_after_xfer;
 		assert_int_equal(ch_service(tx, 4, NULL), 1);
-		/* the flags, then the clear with the RTS */
+		tx->after_xfer = NULL;
+		/* the flags, then the RTS with the clear */
 		assert_int_equal(tx->messages - messages, 2);
+		assert_int_equal(drain_requested_first, drain_staged);
 		assert_int_equal(tx->core.tx.staged, 0);
 		ch_run_idle(rig, 10 * MS);
 		assert_int_equal(tx->ev.tx_done_count, k);
