@@ -115,12 +115,15 @@ static int flags_read_txreq(struct mcp2510_chip *chip, struct irq_flags *f)
 
 /*
  * READ STATUS, or what a drain's poll read after the previous pass's
- * clear and RTS: nothing has changed the flags since.
+ * clear and RTS: nothing has changed the flags since.  A frame it shows
+ * came during this call, after INT fired (see rx_first_waited()).
  */
-static int status_get(struct mcp2510_chip *chip, u8 *status)
+static int status_get(struct mcp2510_chip *chip, struct irq_flags *f,
+		      u8 *status)
 {
 	if (chip->irq.tx_polled) {
 		chip->irq.tx_polled = false;
+		f->polled = true;
 		*status = chip->irq.tx_poll_status;
 		return 0;
 	}
@@ -144,7 +147,7 @@ int flags_read(struct mcp2510_chip *chip, struct irq_flags *f)
 			err = flags_read_txreq(chip, f);
 	} else {
 		chip->irq.passes_to_full_read--;
-		err = status_get(chip, &status);
+		err = status_get(chip, f, &status);
 		if (err)
 			return err;
 		status_decode(status, f);

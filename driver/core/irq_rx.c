@@ -217,15 +217,15 @@ static bool rx_order_known(const struct mcp2510_chip *chip)
  * with rollover every overflow happens while RXB1 is full, and the pass
  * that takes RXB1 has the next one read CANINTF.  Without rollover RXB0
  * overflows alone, which no pass can tell from READ STATUS.  A pass that
- * goes on from the previous one's READ STATUS takes a frame that came
- * during that pass, after INT fired.
+ * goes on from the previous one's READ STATUS, or from a drain's poll,
+ * takes a frame that came during that pass or poll, after INT fired.
  */
 bool rx_first_waited(const struct mcp2510_chip *chip,
 		     const struct irq_flags *f)
 {
 	u8 rx = f->intf & MCP2510_INT_RX_ALL;
 
-	if (!rx || rx != f->intf || f->rx_continued ||
+	if (!rx || rx != f->intf || f->rx_continued || f->polled ||
 	    chip->irq.flags_cleared || !chip->filters.rollover)
 		return false;
 	return rx != MCP2510_INT_RX_ALL || rx_order_known(chip);

@@ -72,6 +72,7 @@ struct irq_flags {
 	u8 status;		/* what it read */
 	bool full;		/* CANINTF and EFLG were read */
 	bool rx_continued;	/* nothing read: see flags_from_rx_status() */
+	bool polled;		/* read by a drain's poll: see status_get() */
 };
 
 /* irq_flags.c */

@@ -268,7 +268,9 @@ unsigned int ch_service(struct ch_node *node, unsigned int max, int *last_ret)
 		ch_irq_latency(node);
 		if (ch_drain_waits(node))
 			node->drain_waits++;
+		node->in_irq = true;
 		ret = mcp2510_irq_handle(&node->core);
+		node->in_irq = false;
 		node->irq_calls++;
 		calls++;
 	}

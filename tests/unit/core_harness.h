@@ -64,6 +64,7 @@ struct ch_node {
 	u64 messages;		/* SPI messages: xfer_msg calls, xfer as one */
 	u64 status_reads;	/* of them, a READ STATUS alone */
 	u64 irq_calls;		/* mcp2510_irq_handle() calls by ch_service() */
+	bool in_irq;		/* inside one of them */
 	/* of them, those a drain waited for: frames staged, none pending */
 	u64 drain_waits;
 	/* a broken board: MISO always reads this (-1: a working line) */

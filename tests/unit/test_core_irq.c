@@ -655,6 +655,80 @@ static void test_rx_stamp_unseen_overflow(void **state)
 	ch_rig_free(rig);
 }
 
+/*
+ * A drain's poll (irq_tx.c) that ends on a received frame: the frame came
+ * while the handler ran, after INT fired for the completion before it,
+ * so the pass that takes it on the polled status must not say it waited.
+ * Each transfer costs 20 us of bus time while frames are staged; a frame
+ * of higher priority, queued when the drain begins, wins the bus from the
+ * last pending frame and arrives during the polls.
+ */
+#define POLLED_ID	0x001
+static bool polled_sent, polled_taken, polled_waited, polled_in_call;
+/* the handler call whose first transfer left no frame in the chip */
+static u64 call_seen, rx_empty_call;
+
+static void drain_poll_costs(struct ch_node *node)
+{
+	const struct mcp2510_chip *c = &node->core;
+	u8 pending = c->tx.busy & ~c->tx.done & ~c->tx.staged;
+	struct can_frame cf = ch_frame(POLLED_ID, 8, 0);
+
+	if (node->in_irq && call_seen != node->irq_calls) {
+		call_seen = node->irq_calls;
+		if (!(sim_chip_peek(&node->sim, MCP2510_REG_CANINTF) &
+		      MCP2510_INT_RX_ALL))
+			rx_empty_call = call_seen;
+	}
+	if (!c->tx.staged)
+		return;
+	if (!polled_sent && pending & (pending - 1)) {
+		assert_int_equal(sim_phantom_send(&node->rig->bus, &cf, 0), 0);
+		polled_sent = true;
+	}
+	sim_bus_advance(&node->rig->bus, 20000);
+}
+
+static void drain_poll_rx(struct ch_node *node, const struct can_frame *cf)
+{
+	if (cf->can_id != POLLED_ID)
+		return;
+	polled_taken = true;
+	polled_waited =
+		node->ev.pass[(node->ev.pass_count - 1) % CH_LOG_MAX].first_waited;
+	/* the handler call taking it began before it came */
+	polled_in_call = rx_empty_call == node->irq_calls;
+}
+
+static void test_rx_stamp_not_for_frame_polled_in_drain(void **state)
+{
+	unsigned int i, k;
+
+	(void)state;
+	for (i = 0; i < ARRAY_SIZE(both_models); i++) {
+		struct ch_rig *rig = stamp_rig(both_models[i], true);
+		struct ch_node *node = &rig->node[0];
+
+		polled_sent = false;
+		polled_taken = false;
+		call_seen = U64_MAX;
+		rx_empty_call = U64_MAX;
+		node->after_xfer = drain_poll_costs;
+		node->ev.on_rx = drain_poll_rx;
+		for (k = 0; !polled_taken && k < 100; k++) {
+			struct can_frame cf = ch_frame(0x100, 8, k);
+
+			while (!mcp2510_tx_free(&node->core))
+				assert_true(ch_step(rig));
+			assert_true(mcp2510_tx_submit(&node->core, &cf) >= 0);
+		}
+		assert_true(polled_taken);
+		assert_true(polled_in_call);
+		assert_false(polled_waited);
+		ch_rig_free(rig);
+	}
+}
+
 /* After a restart (a reset) the first pass cannot tell. */
 static void test_rx_stamp_not_after_reset(void **state)
 {
@@ -690,6 +764,7 @@ int main(void)
 		cmocka_unit_test(test_rx_stamp_not_with_tx),
 		cmocka_unit_test(test_rx_stamp_errif),
 		cmocka_unit_test(test_rx_stamp_unseen_overflow),
+		cmocka_unit_test(test_rx_stamp_not_for_frame_polled_in_drain),
 		cmocka_unit_test(test_rx_stamp_not_after_reset),
 	};
 
