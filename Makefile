@@ -126,6 +126,7 @@ include tests/lint/lint.mk
 include tests/trixie/trixie.mk
 include tests/bench/bench.mk
 include tests/matrix/matrix.mk
+include tests/upstream/upstream.mk
 
 # Then the scenario suite on the rig kernels, so that the debug kernel's
 # build (tests/vm/vm.mk) has had every other step to overlap with.

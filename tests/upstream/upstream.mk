@@ -1,0 +1,29 @@
+# tests/upstream/upstream.mk: the patch series for mainline mcp251x
+# (upstream/mcp251x/: fixes, each with its reproducer on the rig).
+#
+#   make upstream-check   the series, patch by patch, on the mcp251x.c of
+#                         the newest kernel source Debian ships
+#                         (linux-source-$(KERNEL_NEWEST), trixie-backports):
+#                         checkpatch.pl --strict on each patch file, W=1
+#                         C=1 builds against the rig's 6.12 and newest
+#                         headers at each step, each fix's reproducer
+#                         failing before its patch and passing after it on
+#                         the rig's 6.12 kernel, and all of them with the
+#                         whole series on 6.12 and the newest kernel
+#                         (tests/upstream/upstream-check says how)
+#
+# It installs what it needs, as make check does.  Not part of make check:
+# it downloads Debian's whole kernel source package for one file.
+
+UPSTREAM_DIR := $(TOP)/tests/upstream
+# The pristine file and checkpatch.pl, fetched once per Debian version.
+CLEAN_KEEP += upstream/source
+
+ifneq ($(filter upstream-check,$(MAKECMDGOALS)),)
+export MCP2510_INSTALL_DEPS := 1
+endif
+
+.PHONY: upstream-check
+upstream-check: vm-kernel-6.12 vm-kernel-$(KERNEL_NEWEST)
+	@$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS="6.12 $(KERNEL_NEWEST)"
+	@$(UPSTREAM_DIR)/upstream-check
