@@ -1,6 +1,5 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
-# vm-kernels: 6.12
 # Reproducer of upstream/mcp251x/0003 (SJW = PS2): DS21291 5.8 and
 # DS21801 5.3 ask for "Phase Seg 2 > Sync Jump Width".  can-dev accepts
 # "bitrate 125000 sjw 2", which at 16 MHz gives PS2 = SJW = 2, and

@@ -1,6 +1,5 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
-# vm-kernels: 6.12
 # Reproducer of upstream/mcp251x/0001 (receive order): the phantom node
 # floods can1 with 3000 numbered frames back to back at 1 Mbit/s, more
 # than mainline mcp251x can take, and can-flood counts the frames that

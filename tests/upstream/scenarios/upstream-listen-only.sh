@@ -1,6 +1,5 @@
 #!/bin/sh
 # vm-run: --nodes 2 --variant mcp2515 --driver mcp251x
-# vm-kernels: 6.12
 # Reproducer of upstream/mcp251x/0002 (listen-only): in listen-only mode
 # the chip's RXM = 11 also takes a frame an error frame destroyed
 # (DS21801 10.3; the model loads it as sent), and its sender sends it
