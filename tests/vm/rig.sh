@@ -264,3 +264,17 @@ gpio_get() {
 gpio_chip() {
 	gpiodetect | awk -v l="[$1]" '$2 == l { print $1 }'
 }
+
+# The mcp251x under test, for make upstream-check's reproducers
+# (tests/upstream/scenarios): /extra/mcp251x.ko in place of the kernel's
+# own when there is one, else the kernel's, whose defect a reproducer
+# then expects to find.  Sets ko and under_test (what failures name).
+mcp251x_under_test() {
+	[ "$VM_SIM" = 1 ] || fail "the simulated chips are not loaded"
+	ko=/extra/mcp251x.ko
+	under_test="the kernel's mcp251x"
+	[ -f $ko ] || return 0
+	under_test=$ko
+	{ rmmod mcp251x && insmod $ko && wait_for 10 test -e /sys/class/net/can1; } ||
+		fail "cannot load $ko"
+}

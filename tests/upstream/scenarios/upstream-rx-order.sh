@@ -7,18 +7,11 @@
 # to the stack and only then reads CANINTF again to see whether RXB1 is
 # full; meanwhile one frame can fill the freed RXB0 and the next one RXB1,
 # and mcp251x then reads RXB1, the newer frame, first.
-# With /extra/mcp251x.ko (make upstream-check puts the build under test
-# there) that module replaces the kernel's own and must deliver every round
-# in order.  Without it the kernel's mcp251x runs, and the scenario checks
-# that it still shows the defect, so that a kernel with the fix says so.
+# Which mcp251x runs, and what it must show: mcp251x_under_test (rig.sh).
 set -eu
 . /lib/rig.sh
 
-[ "$VM_SIM" = 1 ] || fail "the simulated chips are not loaded"
-ko=/extra/mcp251x.ko under_test="the kernel's mcp251x"
-[ ! -f $ko ] || under_test=$ko
-[ ! -f $ko ] || { rmmod mcp251x && insmod $ko && wait_for 10 test -e /sys/class/net/can1; } ||
-	fail "cannot load $ko"
+mcp251x_under_test
 
 frames=3000
 rounds=6

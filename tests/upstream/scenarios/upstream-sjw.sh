@@ -7,18 +7,11 @@
 # model then cannot communicate (tests/vm/scenarios/sim-bittiming.sh).  The
 # fixed driver refuses to come up with it, and still comes up, and moves a
 # frame, with SJW 1 at the same rate.
-# With /extra/mcp251x.ko (make upstream-check puts the build under test
-# there) that module replaces the kernel's own and must pass.  Without it
-# the kernel's mcp251x runs, and the scenario checks that it still shows
-# the defect, so that a kernel with the fix says so.
+# Which mcp251x runs, and what it must show: mcp251x_under_test (rig.sh).
 set -eu
 . /lib/rig.sh
 
-[ "$VM_SIM" = 1 ] || fail "the simulated chips are not loaded"
-ko=/extra/mcp251x.ko under_test="the kernel's mcp251x"
-[ ! -f $ko ] || under_test=$ko
-[ ! -f $ko ] || { rmmod mcp251x && insmod $ko && wait_for 10 test -e /sys/class/net/can1; } ||
-	fail "cannot load $ko"
+mcp251x_under_test
 
 ip link set can0 type can bitrate 125000 sjw 2 || fail "can-dev refused sjw 2"
 ip -details link show can0 | grep -q 'phase-seg2 2 sjw 2' ||
