@@ -93,13 +93,32 @@ static void count_state(struct mcp2510_chip *chip, enum can_state state)
 	}
 }
 
+/*
+ * The chip leaves bus-off by itself after 128 x 11 recessive bits (1.4 ms
+ * at 1 Mbit/s) with TEC, REC and EFLG cleared: an interrupt served later
+ * finds it error-active as if it had never been off the bus.  Only that
+ * recovery lowers TEC by more than one a frame sent, so a fall greater
+ * than the frames seen sent since the last read, plus those sent but not
+ * seen yet (one a buffer), gives the bus-off away.
+ */
+static bool bus_off_missed(const struct mcp2510_chip *chip,
+			   const struct can_berr_counter *bec)
+{
+	return chip->state != CAN_STATE_BUS_OFF &&
+	       bec->txerr + chip->sent_since_bec + MCP2510_TXB_COUNT <
+	       chip->bec.txerr;
+}
+
 void mcp2510_error_state_update(struct mcp2510_chip *chip, u8 eflg,
 				const struct can_berr_counter *bec)
 {
 	enum can_state state = mcp2510_error_eflg_state(eflg);
 	struct can_frame cf;
 
+	if (bus_off_missed(chip, bec))
+		state = CAN_STATE_BUS_OFF;
 	chip->bec = *bec;
+	chip->sent_since_bec = 0;
 	if (state == chip->state)
 		return;
 	/* only a worse state is counted, as the kernel's statistics do */

@@ -185,6 +185,7 @@ struct mcp2510_chip {
 	bool irq_edge;			/* INT wired to an edge-triggered input */
 	enum can_state state;
 	struct can_berr_counter bec;
+	u32 sent_since_bec;		/* frames seen sent since bec was read */
 	struct mcp2510_filters filters;
 	struct mcp2510_counters counters;
 

@@ -98,6 +98,7 @@ static int chip_program(struct mcp2510_chip *chip)
 	chip->irq.passes_to_full_read = MCP2510_IRQ_FULL_READ_EVERY;
 	chip->bec.txerr = 0;
 	chip->bec.rxerr = 0;
+	chip->sent_since_bec = 0;
 	return mcp2510_set_mode(chip, chip->opmode);
 }
 

@@ -187,6 +187,10 @@ static void tx_report(struct mcp2510_chip *chip)
 
 void mcp2510_tx_complete(struct mcp2510_chip *chip, u8 slots)
 {
+	u8 sent = slots & chip->tx.busy & ~chip->tx.done;
+
+	for (; sent; sent &= sent - 1)
+		chip->sent_since_bec++;
 	chip->tx.done |= slots & chip->tx.busy;
 	tx_report(chip);
 }

@@ -140,6 +140,71 @@ static void test_bus_off_and_the_chips_own_recovery(void **state)
 }
 
 /*
+ * An interrupt served later than the chip's own recovery (128 x 11 bits,
+ * 2.8 ms at 500 kbit/s; 1.4 ms at 1 Mbit/s) finds it error-active with
+ * TEC back at 0 and its frame sent.  The bus-off still happened, and is
+ * reported, so that the caller applies its restart policy to it.
+ */
+static void test_bus_off_found_after_the_recovery(void **state)
+{
+	struct ch_rig *rig = bus_off_rig(32, 0);
+	struct ch_node *node = &rig->node[0];
+	unsigned int steps = 0;
+
+	(void)state;
+	while (node->core.state != CAN_STATE_ERROR_PASSIVE) {
+		assert_true(ch_step(rig));
+		assert_true(++steps < 10000);
+	}
+	/* the interrupt waits while the chip goes off the bus and back */
+	sim_bus_advance(&rig->bus, 50 * MS);
+	assert_false(sim_chip_bus_off(&node->sim));
+	assert_int_equal(sim_chip_counters(&node->sim)->frames_tx, 1);
+	assert_int_equal(node->ev.state_count, 2);
+
+	ch_run_idle(rig, 10 * MS);
+	assert_int_equal(node->ev.state_count, 3);
+	assert_int_equal(node->ev.state[2], CAN_STATE_BUS_OFF);
+	assert_int_equal(node->core.counters.bus_offs, 1);
+	assert_non_null(find_error(node, CAN_ERR_BUSOFF));
+	assert_int_equal(node->ev.tx_done_count, 1);
+	assert_error_frames_well_formed(node);
+	ch_rig_free(rig);
+}
+
+/*
+ * A node error-passive from its own frames leaves that state by sending:
+ * TEC falls one a frame, and however late the interrupts come, that is
+ * no bus-off.
+ */
+static void test_slow_recovery_by_sending_is_no_bus_off(void **state)
+{
+	struct ch_rig *rig = bus_off_rig(17, 0);
+	struct ch_node *node = &rig->node[0];
+	unsigned int sent = 0, steps = 0;
+
+	(void)state;
+	while (node->core.state != CAN_STATE_ERROR_PASSIVE) {
+		assert_true(ch_step(rig));
+		assert_true(++steps < 10000);
+	}
+	/* 136 down to 127: nine frames, three at a time, serviced late */
+	while (node->core.state == CAN_STATE_ERROR_PASSIVE && sent < 200) {
+		struct can_frame cf = ch_frame(0x456, 8, sent);
+
+		while (mcp2510_tx_submit(&node->core, &cf) >= 0)
+			cf = ch_frame(0x456, 8, ++sent);
+		sim_bus_advance(&rig->bus, 5 * MS);
+		ch_run_idle(rig, 10 * MS);
+	}
+	assert_int_equal(node->core.state, CAN_STATE_ERROR_WARNING);
+	assert_int_equal(node->core.bec.txerr, 127);
+	assert_int_equal(node->core.counters.bus_offs, 0);
+	assert_null(find_error(node, CAN_ERR_BUSOFF));
+	ch_rig_free(rig);
+}
+
+/*
  * ifdown while bus-off with a frame pending: DS21801 10.0 holds the sleep
  * request while TXREQ is set, and by default a bus-off chip's buffer
  * counts (sim_chip_faults.mode_change_in_bus_off).  The stop must abort
@@ -537,6 +602,8 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_lone_node_goes_passive),
 		cmocka_unit_test(test_bus_off_and_the_chips_own_recovery),
+		cmocka_unit_test(test_bus_off_found_after_the_recovery),
+		cmocka_unit_test(test_slow_recovery_by_sending_is_no_bus_off),
 		cmocka_unit_test(test_restart_from_bus_off),
 		cmocka_unit_test(test_stop_in_bus_off),
 		cmocka_unit_test(test_halt_failing_gives_up_nothing),
