@@ -133,11 +133,46 @@ error_seen() {
 # The simulator's debugfs directory (docs/simulator.md).
 SIM=/sys/kernel/debug/mcp2510-sim
 
+# dlc_recv_start IF FILE: one frame from IF into FILE in the background
+# (can-dlc, which shows a raw DLC above 8 as later can-utils do:
+# 123#1122334455667788_E), returning once the socket is registered.
+dlc_recv_start() {
+	command -v can-dlc >/dev/null || fail "can-dlc is not in the guest"
+	_rx_count "$1"
+	_before=$RX_COUNT
+	can-dlc recv "$1" 1 >"$2" &
+	RECV_PID=$!
+	_tries=0
+	while _rx_count "$1" && [ "$RX_COUNT" -le "$_before" ]; do
+		_tries=$((_tries + 1))
+		[ $_tries -le 100 ] || fail "can-dlc recv $1 never registered"
+		nap 0.05
+	done
+}
+
+# dlc_exchange FROM TO FRAME WIRE GOT: FROM sends FRAME (can-dlc syntax);
+# the bus carries WIRE from FROM's chip and TO reads GOT.
+dlc_exchange() {
+	: >"$SIM/monitor"
+	dlc_recv_start "$2" /tmp/got.txt
+	can-dlc send "$1" "$3" || fail "can-dlc send $1 $3"
+	wait "$RECV_PID" || fail "$2 received nothing after $1 sent $3"
+	read -r _got </tmp/got.txt
+	echo "$1 sent $3, the bus carried $4, $2 read $_got"
+	grep -q " chip${1#can} $4 " "$SIM/monitor" ||
+		{ cat "$SIM/monitor"; fail "$1 sent $3: not $4 on the bus"; }
+	[ "$_got" = "$5" ] || fail "$1 sent $3: $2 read $_got, expected $5"
+}
+
 # if_stat IF COUNTER: one of IF's interface statistics.
 if_stat() {
 	read -r _v <"/sys/class/net/$1/statistics/$2"
 	echo "$_v"
 }
+# sent_beyond IF N / received_beyond IF N: IF counted more than N frames
+# sent / received.
+sent_beyond() { [ "$(if_stat "$1" tx_packets)" -gt "$2" ]; }
+received_beyond() { [ "$(if_stat "$1" rx_packets)" -gt "$2" ]; }
 
 # sim_counter CHIP NAME / sim_state CHIP NAME: one line of chipN/counters
 # or chipN/state.

@@ -225,10 +225,6 @@ heard() {
 	rec "$1.heard $_n$_ids"
 }
 
-# sent_beyond IF N: IF counted more than N sent frames.
-sent_beyond() { [ "$(if_stat "$1" tx_packets)" -gt "$2" ]; }
-received_beyond() { [ "$(if_stat "$1" rx_packets)" -gt "$2" ]; }
-
 # ctrlmode NAME: whether the driver takes "NAME on" (can0 down).
 ctrlmode() {
 	if ip link set can0 type can "$1" on 2>/dev/null; then

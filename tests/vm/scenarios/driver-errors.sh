@@ -32,9 +32,6 @@ berr() {
 		awk -v which="$2" '{ print which == "tx" ? $1 : $2 }'
 }
 
-# received_beyond IF N: IF counted more than N received frames.
-received_beyond() { [ "$(if_stat "$1" rx_packets)" -gt "$2" ]; }
-
 # expect_error FILE WHAT CLASS [CTRL]: FILE holds such an error frame.
 expect_error() {
 	_file=$1 _what=$2

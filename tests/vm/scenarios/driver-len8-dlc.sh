@@ -15,37 +15,6 @@ set -eu
 . /lib/rig.sh
 
 [ -d "$SIM" ] || mount -t debugfs none /sys/kernel/debug
-command -v can-dlc >/dev/null || fail "can-dlc is not in the guest"
-
-# recv_start IF FILE: one frame from IF into FILE in the background,
-# returning once the socket is registered.
-recv_start() {
-	_rx_count "$1"
-	_before=$RX_COUNT
-	can-dlc recv "$1" 1 >"$2" &
-	RECV_PID=$!
-	_tries=0
-	while _rx_count "$1" && [ "$RX_COUNT" -le "$_before" ]; do
-		_tries=$((_tries + 1))
-		[ $_tries -le 100 ] || fail "can-dlc recv $1 never registered"
-		nap 0.05
-	done
-}
-
-# exchange FROM TO FRAME WIRE GOT: FROM sends FRAME; the bus carries WIRE
-# from FROM's chip and TO reads GOT.
-exchange() {
-	: >"$SIM/monitor"
-	recv_start "$2" /tmp/got.txt
-	can-dlc send "$1" "$3" || fail "can-dlc send $1 $3"
-	wait "$RECV_PID" || fail "$2 received nothing after $1 sent $3"
-	read -r got </tmp/got.txt
-	echo "$1 sent $3, the bus carried $4, $2 read $got"
-	grep -q " chip${1#can} $4 " "$SIM/monitor" ||
-		{ cat "$SIM/monitor"; fail "$1 sent $3: not $4 on the bus"; }
-	[ "$got" = "$5" ] || fail "$1 sent $3: $2 read $got, expected $5"
-}
-
 # modes LEN8_CAN0 LEN8_CAN1: both interfaces (down) up again with
 # cc-len8-dlc on or off.
 modes() {
@@ -60,19 +29,19 @@ can_up can0 500000 cc-len8-dlc on
 can_up can1 500000 cc-len8-dlc on
 ip -details link show can0 | grep -q 'CC-LEN8-DLC' ||
 	{ ip -details link show can0; fail "can0 does not show cc-len8-dlc on"; }
-exchange can0 can1 123#1122334455667788_E 123#1122334455667788_E 123#1122334455667788_E
-exchange can1 can0 7FF#0102030405060708_9 7FF#0102030405060708_9 7FF#0102030405060708_9
-exchange can0 can1 1ABCDEF5#A1A2A3A4A5A6A7A8_F 1ABCDEF5#A1A2A3A4A5A6A7A8_F 1ABCDEF5#A1A2A3A4A5A6A7A8_F
+dlc_exchange can0 can1 123#1122334455667788_E 123#1122334455667788_E 123#1122334455667788_E
+dlc_exchange can1 can0 7FF#0102030405060708_9 7FF#0102030405060708_9 7FF#0102030405060708_9
+dlc_exchange can0 can1 1ABCDEF5#A1A2A3A4A5A6A7A8_F 1ABCDEF5#A1A2A3A4A5A6A7A8_F 1ABCDEF5#A1A2A3A4A5A6A7A8_F
 # A plain 8-byte frame is still DLC 8; len8_dlc counts only beside len 8.
-exchange can1 can0 123#1122334455667788 123#1122334455667788 123#1122334455667788
-exchange can0 can1 321#AABBCC_C 321#AABBCC 321#AABBCC
+dlc_exchange can1 can0 123#1122334455667788 123#1122334455667788 123#1122334455667788
+dlc_exchange can0 can1 321#AABBCC_C 321#AABBCC 321#AABBCC
 
 echo "== cc-len8-dlc on the sender only"
 modes on off
-exchange can0 can1 123#1122334455667788_E 123#1122334455667788_E 123#1122334455667788
+dlc_exchange can0 can1 123#1122334455667788_E 123#1122334455667788_E 123#1122334455667788
 modes off on
-exchange can1 can0 123#1122334455667788_D 123#1122334455667788_D 123#1122334455667788
+dlc_exchange can1 can0 123#1122334455667788_D 123#1122334455667788_D 123#1122334455667788
 
 echo "== cc-len8-dlc off on the sender"
-exchange can0 can1 123#1122334455667788_E 123#1122334455667788 123#1122334455667788
+dlc_exchange can0 can1 123#1122334455667788_E 123#1122334455667788 123#1122334455667788
 echo "driver-len8-dlc: ok"

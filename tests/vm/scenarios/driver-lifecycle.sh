@@ -29,16 +29,13 @@ mods=/opt/mcp2510/modules
 
 show() { ip -details -statistics link show "$1"; }
 
-# sent_beyond N: can0 counted more than N frames sent.
-sent_beyond() { [ "$(if_stat can0 tx_packets)" -gt "$1" ]; }
-
 # more_irqs CHIP N: more than N interrupts of CHIP reached Linux.
 more_irqs() { [ "$(sim_counter "$1" irqs_delivered)" -gt "$2" ]; }
 
 # until_sent N: poll, more finely than wait_for, until can0 sent frame N+1.
 until_sent() {
 	_tries=0
-	while ! sent_beyond "$1"; do
+	while ! sent_beyond can0 "$1"; do
 		_tries=$((_tries + 1))
 		[ $_tries -le 400 ] || return 1
 		nap 0.05
