@@ -1,12 +1,13 @@
 # tests/upstream/upstream.mk: the patch series for mainline mcp251x
-# (upstream/mcp251x/: fixes, each with its reproducer on the rig).
+# (upstream/mcp251x/: fixes and features, each with its reproducer on the
+# rig).
 #
 #   make upstream-check   the series, patch by patch, on the mcp251x.c of
 #                         the newest kernel source Debian ships
 #                         (linux-source-$(KERNEL_NEWEST), trixie-backports):
 #                         checkpatch.pl --strict on each patch file, W=1
 #                         C=1 builds against the rig's 6.12 and newest
-#                         headers at each step, each fix's reproducer
+#                         headers at each step, each patch's reproducer
 #                         failing before its patch and passing after it on
 #                         the rig's 6.12 kernel, and all of them with the
 #                         whole series on 6.12 and the newest kernel
