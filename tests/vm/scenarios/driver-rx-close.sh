@@ -99,12 +99,14 @@ flood_and_close() {
 }
 
 # Where the IRQ threads cannot be kept off the second CPU (7.3), NAPI
-# now and then gets everything out before the close: try again then.
+# now and then gets everything out before the close: try again then.  On
+# 7.3 beside another guest on a two-core host three tries in a row once
+# all went so; each try takes about a minute there.
 try=1
 while :; do
 	flood_and_close
 	[ "$got" -ge "$queued" ] || break
-	[ "$try" -lt 3 ] || fail "NAPI delivered all $queued frames in each of $try tries: none was left at close"
+	[ "$try" -lt 5 ] || fail "NAPI delivered all $queued frames in each of $try tries: none was left at close"
 	try=$((try + 1))
 	can_up can0 500000
 	pin_threads
