@@ -31,7 +31,9 @@ frames=200 status=0
 KIT_FRAMES=$frames KIT_TRANSITS=50 mcp2510-hwtest -o /tmp/kit can0 can1 || status=$?
 cat /tmp/kit/summary.json
 failed=$(sed -n 's/^check \([^ ]*\) fail .*/\1/p' /tmp/kit/results.txt | grep -v '^flood-' | tr '\n' ' ')
-if [ "$VM_DRIVER" = mcp2510 ]; then
+# The series of upstream/mcp251x (make upstream-check's module) keeps
+# the order (0001).
+if [ "$VM_DRIVER" = mcp2510 ] || [ -f /extra/mcp251x.ko ]; then
 	! grep -q '^check flood-[^ ]* fail' /tmp/kit/results.txt || fail "a flood failed"
 else
 	! grep '^check flood-[^ ]* fail' /tmp/kit/results.txt | grep -v "duplicated 0, reordered [1-9][0-9]*, corrupted 0, sent $frames\$" ||

@@ -14,7 +14,8 @@
 # destroyed (DS21801 10.3; the model loads it as sent), so a frame sent
 # again after an error reaches a listen-only mcp251x twice.  The scenario
 # pins that down (docs/differences-from-mcp251x.md, "Where the data
-# sheets' strict reading breaks mainline").
+# sheets' strict reading breaks mainline"), and that the fix of
+# upstream/mcp251x/0002 takes it once (make upstream-check).
 set -eu
 . /lib/rig.sh
 
@@ -128,7 +129,10 @@ cat $sim/monitor
 cat /tmp/lo.txt
 grep -q 'phantom 324#BEEF .* error-' $sim/monitor ||
 	fail "the phantom's first 324#BEEF was not destroyed"
-expect_lines /tmp/lo.txt 2
+# upstream/mcp251x/0002 fixes it: make upstream-check's module takes it once.
+copies=2
+[ ! -f /extra/mcp251x.ko ] || copies=1
+expect_lines /tmp/lo.txt $copies
 ip link set can0 down
 ip link set can1 down
 echo "sim-mcp251x-basic: ok"
