@@ -6,8 +6,9 @@
 # through, once with the mode off and once with it on: off, no bus-error
 # frame and no count, as before; on, each interface reports bus errors.
 # The interrupts each chip raised and the sender's SPI transfers are
-# printed for both runs (MERRF may gather several errors into one
-# interrupt).
+# printed for both runs, not judged: MERRF gathers the errors that come
+# while one is served, so how many interrupts the mode costs depends on
+# how fast the IRQ thread runs (all 13 errors in one, on a slow guest).
 # Which mcp251x runs, and what it must show: mcp251x_under_test (rig.sh).
 set -eu
 . /lib/rig.sh
@@ -66,7 +67,7 @@ error_seen /tmp/err0.txt $CAN_ERR_BUSERROR ||
 error_seen /tmp/err0.txt $CAN_ERR_PROT || fail "$under_test: a bus-error frame without CAN_ERR_PROT"
 [ "$(bus_errors can0)" -gt 0 ] && [ "$(bus_errors can1)" -gt 0 ] ||
 	fail "$under_test: bus errors not counted on both interfaces"
-[ "$IRQS0" -gt "$off0" ] || fail "$under_test: no more interrupts with berr-reporting on ($IRQS0, off $off0)"
 ip link set can0 down
 ip link set can1 down
-echo "upstream-berr-reporting: $under_test reports bus errors with berr-reporting on, for $((IRQS0 - off0)) more interrupts on the sender"
+echo "upstream-berr-reporting: $under_test reports bus errors with berr-reporting on;" \
+	"interrupts on the sender: $off0 off, $IRQS0 on"
