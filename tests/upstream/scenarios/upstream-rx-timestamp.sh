@@ -6,7 +6,7 @@
 # the stack stamps a frame once the driver has read it, two messages
 # (100 ms) after its end at least; with the patch the stamp is the time INT
 # fired, less than that after the end of the frame.  Then driver-rx-
-# timestamp's honesty checks on floods of 60 frames (500 kbit/s, both
+# timestamp's honesty checks (/lib/rx-timestamps.sh) on floods of 60 frames (500 kbit/s, both
 # buffers overrun, and 125 kbit/s): every stamp after the end of its
 # frame on the bus and before recvmsg() returned it, never decreasing in
 # arrival order, in SO_TIMESTAMPNS and in candump -t a.  Both INT
@@ -15,115 +15,18 @@
 # Which mcp251x runs, and what it must show: mcp251x_under_test (rig.sh).
 set -eu
 . /lib/rig.sh
+. /lib/rx-timestamps.sh
 
 mcp251x_under_test
 
-FRAMES=60
-
-ethtool -T can1 >/tmp/tsinfo.txt || fail "ethtool -T can1 failed"
-grep -q "software-receive" /tmp/tsinfo.txt ||
-	{ cat /tmp/tsinfo.txt; fail "software receive stamps not offered"; }
-! grep -q "hardware-receive" /tmp/tsinfo.txt ||
-	{ cat /tmp/tsinfo.txt; fail "hardware stamps claimed for host clock stamps"; }
-
-# burst BITRATE TIME_SCALE: FRAMES frames back to back to can1, checked
-# as above; sets STORED and LOST (frames the chip stored and lost).
-burst() {
-	can_up can1 "$1"
-	echo "$2" >"$SIM/time_scale"
-	echo 0 >"$SIM/chip1/counters"
-	echo clear >"$SIM/monitor"
-	dump_start can1 "$FRAMES" /tmp/dump.txt -t a
-	: >/tmp/ts.txt
-	can-tstamp can1 "$FRAMES" "$SIM/monitor_times" >>/tmp/ts.txt &
-	TS_PID=$!
-	wait_for 20 ts_ready || fail "can-tstamp never listened"
-	echo "$FRAMES 100#00000000 $1" >"$SIM/flood"
-	wait "$TS_PID" || fail "can-tstamp failed"
-	# it stopped 3 s after the last frame: candump has them all too (and
-	# has ended by itself if that was all FRAMES)
-	kill "$DUMP_PID" 2>/dev/null || true
-	dump_wait
-	ip link set can1 down
-
-	STORED=$(sim_counter 1 frames_rx)
-	LOST=$(sim_counter 1 overflows)
-	echo "$1 bit/s, time_scale $2: chip stored $STORED, lost $LOST to full buffers"
-	sed 1d /tmp/ts.txt >/tmp/err.txt
-	got=$(wc -l </tmp/err.txt)
-	[ "$got" -eq "$STORED" ] || { cat /tmp/ts.txt; fail "got $got stamped frames of $STORED"; }
-	! grep -q missing /tmp/err.txt || { cat /tmp/ts.txt; fail "a frame not on the bus"; }
-	# FRAME STAMP-END RECV-STAMP STAMP-PREV, in ns
-	awk '$2 < 0 { print "stamped before its end of frame: " $0; bad = 1 }
-	     $3 <= 0 { print "stamped after recvmsg() returned it: " $0; bad = 1 }
-	     $4 < 0 { print "stamp earlier than the frame before: " $0; bad = 1 }
-	     END { exit bad }' /tmp/err.txt || fail "$under_test: dishonest timestamps"
-	sort -n -k2 /tmp/err.txt | awk '{ e[NR] = $2 } END {
-		printf "stamp - end of frame: median %d us, max %d us\n",
-		       e[int((NR + 1) / 2)] / 1000, e[NR] / 1000 }'
-	sort -n -k3 /tmp/err.txt | awk '{ e[NR] = $3 } END {
-		printf "recvmsg - stamp: median %d us\n", e[int((NR + 1) / 2)] / 1000 }'
-
-	# candump -t a: (SECONDS.MICROSECONDS) never decreasing; both parts are
-	# zero-padded, so the digits compare as strings (busybox awk takes a
-	# number with a leading 0 for octal)
-	[ "$(wc -l </tmp/dump.txt)" -eq "$STORED" ] ||
-		{ cat /tmp/dump.txt; fail "candump got $(wc -l </tmp/dump.txt) of $STORED frames"; }
-	tr -d '()' </tmp/dump.txt | awk '{ split($1, t, "[.]"); k = t[1] "" t[2]
-		if (NR > 1 && k < last) { print "back in time: " p; print "          to: " $0; bad = 1 }
-		last = k; p = $0 } END { exit bad }' ||
-		fail "$under_test: candump -t a timestamps go back"
-}
-ts_ready() { read -r _l </tmp/ts.txt && [ "$_l" = ready ]; }
-
-# isolated: frames one at a time, with SPI messages that cost SPI_MSG_NS
-# each.  The chip is read (flags, then the buffer: two messages at least)
-# before a frame can be queued, so a stamp taken by the stack, or by the
-# driver once it has read the frame, is 2 * SPI_MSG_NS after the end of
-# frame at least; the time INT fired is not.  The first frame follows
-# the chip's reset at start, which leaves its pass nothing to go on: it
-# is stamped after the flags read, so it is left out.
-SPI_MSG_NS=50000000
-isolated() {
-	echo "$SPI_MSG_NS" >"$SIM/spi_msg_ns"
-	echo 0 >"$SIM/irq_latency_ns"
-	echo 1 >"$SIM/spi_time"
-	can_up can1 125000
-	echo 1 >"$SIM/time_scale"
-	echo clear >"$SIM/monitor"
-	: >/tmp/ts.txt
-	can-tstamp can1 6 "$SIM/monitor_times" >>/tmp/ts.txt &
-	TS_PID=$!
-	wait_for 20 ts_ready || fail "can-tstamp never listened"
-	for i in 0 1 2 3 4 5; do
-		echo "200#0$i 125000" >"$SIM/inject"
-		nap 0.5
-	done
-	wait "$TS_PID" || fail "can-tstamp failed"
-	ip link set can1 down
-	echo 0 >"$SIM/spi_time"
-	sed '1,2d' /tmp/ts.txt >/tmp/err.txt
-	cat /tmp/err.txt
-	[ "$(wc -l </tmp/err.txt)" -eq 5 ] || { cat /tmp/ts.txt; fail "lone frames lost"; }
-	awk -v lim=$((2 * SPI_MSG_NS)) '$2 < 0 || $2 >= lim {
-		print "not stamped when INT fired: " $0; bad = 1 } END { exit bad }' \
-		/tmp/err.txt
-}
+stamps_offered can1
 if [ ! -f $ko ]; then
-	! isolated || fail "$under_test stamps frames when INT fired: the kernel has the change"
+	! stamp_isolated || fail "$under_test stamps frames when INT fired: the kernel has the change"
 	echo "upstream-rx-timestamp: $under_test stamps frames after reading them"
 	exit 0
 fi
-isolated || fail "$under_test: stamps taken after the chip was read"
+stamp_isolated || fail "$under_test: stamps taken after the chip was read"
 
-# Faster than the guest: both buffers fill and overflow.
-burst 500000 1
-[ "$LOST" -gt 0 ] || fail "no overflow: both buffers were never full (guest too fast?)"
-# Slow enough for the driver to take many frames, a pass at a time (the
-# debug kernel is several times slower).
-scale=4
-[ "$VM_KERNEL" != debug ] || scale=20
-burst 125000 "$scale"
-[ "$STORED" -ge 10 ] || fail "only $STORED frames stored: too few passes to judge"
+stamp_bursts
 
 echo "upstream-rx-timestamp: $under_test stamps frames when INT fired, honestly"
