@@ -65,10 +65,8 @@ r=bus-off-restart-ms
 differ="$differ|$r.can0.errors|$r.can0.restarts|$r.can0.bus_off|$r.can0.tx_packets"
 differ="$differ|$r.can0.tx_bytes|$r.can0.tx_dropped|$r.can0.tx_aborted_errors"
 differ="$differ|$r.can1.rx_packets|$r.can1.rx_bytes"
-# - The series of upstream/mcp251x (make upstream-check's module in /extra)
-#   ends the frame pending at bus-off itself, for BQL (0011), and counts it
-#   in tx_errors alone, as mcp251x counts every frame it drops: can-dev's
-#   restart finds nothing to count.
+# - upstream/mcp251x's series (/extra) ends that frame itself at bus-off
+#   (0011, BQL), counted in tx_errors alone: can-dev's restart counts none.
 [ ! -f /extra/mcp251x.ko ] ||
 	differ="$differ|restart.can0.tx_dropped|restart.can0.tx_aborted_errors"
 
