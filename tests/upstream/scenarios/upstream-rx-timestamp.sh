@@ -6,12 +6,13 @@
 # the stack stamps a frame once the driver has read it, two messages
 # (100 ms) after its end at least; with the patch the stamp is the time INT
 # fired, less than that after the end of the frame.  Then driver-rx-
-# timestamp's honesty checks (/lib/rx-timestamps.sh) on floods of 60 frames (500 kbit/s, both
-# buffers overrun, and 125 kbit/s): every stamp after the end of its
-# frame on the bus and before recvmsg() returned it, never decreasing in
-# arrival order, in SO_TIMESTAMPNS and in candump -t a.  Both INT
-# triggers: on a falling edge the hard handler may run while the IRQ
-# thread is still busy.
+# timestamp's honesty checks (/lib/rx-timestamps.sh) on lone frames at
+# uneven gaps over the slow SPI bus and on floods of 60 frames (500
+# kbit/s, both buffers overrun, and 125 kbit/s): every stamp after the
+# end of its frame on the bus and before recvmsg() returned it, never
+# decreasing in arrival order, in SO_TIMESTAMPNS and in candump -t a.
+# Both INT triggers: on a falling edge the hard handler may run while
+# the IRQ thread is still busy.
 # Which mcp251x runs, and what it must show: mcp251x_under_test (rig.sh).
 set -eu
 . /lib/rig.sh
@@ -26,7 +27,7 @@ if [ ! -f $ko ]; then
 	exit 0
 fi
 stamp_isolated || fail "$under_test: stamps taken after the chip was read"
-
+stamp_paced
 stamp_bursts
 
 echo "upstream-rx-timestamp: $under_test stamps frames when INT fired, honestly"
