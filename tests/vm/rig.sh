@@ -265,8 +265,8 @@ chips_load() {
 	case $1 in
 	mcp2510) insmod /opt/mcp2510/modules/mcp2510.ko || fail "cannot load mcp2510.ko" ;;
 	mcp251x)
-		if [ -f /extra/mcp251x.ko ]; then
-			insmod /extra/mcp251x.ko || fail "cannot load /extra/mcp251x.ko"
+		if [ -n "${VM_MCP251X_KO:-}" ]; then
+			insmod "$VM_MCP251X_KO" || fail "cannot load $VM_MCP251X_KO"
 		else
 			modprobe mcp251x || fail "cannot load mcp251x"
 		fi
@@ -309,15 +309,15 @@ gpio_chip() {
 }
 
 # The mcp251x under test, for make upstream-check's reproducers
-# (tests/upstream/scenarios): /extra/mcp251x.ko, which /init and
-# chips_load load in place of the kernel's own when there is one, else
+# (tests/upstream/scenarios): the patched build that vm-run --module put in
+# /extra and /init and chips_load load in place of the kernel's own, else
 # the kernel's, whose defect a reproducer then expects to find.  Sets ko
-# and under_test (what failures name).
+# (the patched build, or empty) and under_test (what failures name).
 mcp251x_under_test() {
 	[ "$VM_SIM" = 1 ] || fail "the simulated chips are not loaded"
-	ko=/extra/mcp251x.ko
+	ko=${VM_MCP251X_KO:-}
 	under_test="the kernel's mcp251x"
-	[ ! -f $ko ] || under_test=$ko
+	[ -z "$ko" ] || under_test=$ko
 }
 
 # burst_under_rival FRAMES BITRATE: can0 sends FRAMES sequence-numbered

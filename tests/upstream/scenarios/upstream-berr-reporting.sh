@@ -50,11 +50,11 @@ burst() {
 
 if ! ip link set can0 type can bitrate 125000 berr-reporting on 2>/tmp/mode.err; then
 	echo "$under_test refuses berr-reporting: $(cat /tmp/mode.err)"
-	[ ! -f $ko ] || fail "$under_test refuses berr-reporting"
+	[ -z "$ko" ] || fail "$under_test refuses berr-reporting"
 	echo "upstream-berr-reporting: $under_test has no berr-reporting"
 	exit 0
 fi
-[ -f $ko ] || fail "$under_test takes berr-reporting: the kernel has the change"
+[ -n "$ko" ] || fail "$under_test takes berr-reporting: the kernel has the change"
 
 burst off
 ! error_seen /tmp/err0.txt $CAN_ERR_BUSERROR || fail "$under_test: a bus-error frame with berr-reporting off"

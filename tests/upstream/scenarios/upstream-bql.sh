@@ -19,7 +19,7 @@ set -eu
 
 mcp251x_under_test
 bql_burst
-if [ ! -f $ko ]; then
+if [ -z "$ko" ]; then
 	[ "$LIMIT" -eq "$LIMIT0" ] || fail "the limit of $under_test moved: the kernel has the change"
 	echo "upstream-bql: $under_test leaves the limit at $LIMIT0: no BQL"
 	exit 0

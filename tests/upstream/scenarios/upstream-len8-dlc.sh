@@ -12,11 +12,11 @@ mcp251x_under_test
 
 if ! ip link set can0 type can bitrate 500000 cc-len8-dlc on 2>/tmp/mode.err; then
 	echo "$under_test refuses cc-len8-dlc: $(cat /tmp/mode.err)"
-	[ ! -f $ko ] || fail "$under_test refuses cc-len8-dlc"
+	[ -z "$ko" ] || fail "$under_test refuses cc-len8-dlc"
 	echo "upstream-len8-dlc: $under_test has no cc-len8-dlc"
 	exit 0
 fi
-[ -f $ko ] || fail "$under_test takes cc-len8-dlc: the kernel has the change"
+[ -n "$ko" ] || fail "$under_test takes cc-len8-dlc: the kernel has the change"
 can_up can0 500000 cc-len8-dlc on
 can_up can1 500000 cc-len8-dlc on
 dlc_exchange can0 can1 123#1122334455667788_E 123#1122334455667788_E 123#1122334455667788_E

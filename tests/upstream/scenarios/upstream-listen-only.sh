@@ -40,7 +40,7 @@ ip -statistics link show can1
 ip link set can0 down
 ip link set can1 down
 
-if [ -f $ko ]; then
+if [ -n "$ko" ]; then
 	expect_eq "$under_test, listen-only: copies of the destroyed and resent 324#BEEF" "$beef" 1
 else
 	[ "$beef" -eq 2 ] ||

@@ -30,7 +30,7 @@ for i in 0 1; do
 		threaded=$((threaded + 1))
 	fi
 done
-if [ ! -f $ko ]; then
+if [ -z "$ko" ]; then
 	[ $threaded -eq 0 ] || fail "$under_test takes threaded NAPI: the kernel has the change"
 	echo "upstream-rx-offload: $under_test has no NAPI context to thread"
 	exit 0

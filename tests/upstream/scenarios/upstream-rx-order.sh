@@ -34,12 +34,12 @@ while [ $round -le $rounds ]; do
 	[ "$d" -eq 0 ] && [ "$c" -eq 0 ] || fail "round $round: duplicated or corrupted frames"
 	reordered=$((reordered + n))
 	# The kernel's mcp251x has shown the defect: no need for more rounds.
-	[ -f $ko ] || [ $reordered -eq 0 ] || break
+	[ -n "$ko" ] || [ $reordered -eq 0 ] || break
 	round=$((round + 1))
 done
 ip link set can1 down
 
-if [ -f $ko ]; then
+if [ -n "$ko" ]; then
 	[ $reordered -eq 0 ] ||
 		fail "$under_test: $reordered frames reached the socket after a newer one"
 	echo "upstream-rx-order: $under_test delivered $rounds floods in order"

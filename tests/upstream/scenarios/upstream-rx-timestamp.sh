@@ -21,7 +21,7 @@ set -eu
 mcp251x_under_test
 
 stamps_offered can1
-if [ ! -f $ko ]; then
+if [ -z "$ko" ]; then
 	! stamp_isolated || fail "$under_test stamps frames when INT fired: the kernel has the change"
 	echo "upstream-rx-timestamp: $under_test stamps frames after reading them"
 	exit 0

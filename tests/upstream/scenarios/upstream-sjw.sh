@@ -31,7 +31,7 @@ frame_passes can0 can1 123 5A || fail "$under_test: no frame from can0 to can1 w
 ip link set can0 down
 ip link set can1 down
 
-if [ -f $ko ]; then
+if [ -n "$ko" ]; then
 	[ $up -eq 0 ] || fail "$under_test came up with SJW = PS2, which the data sheets forbid"
 	echo "upstream-sjw: $under_test refuses SJW = PS2 and works with SJW 1"
 else

@@ -39,7 +39,7 @@ echo "$under_test: of $1 pairs of can0's frames in a row on the bus, $2 back to 
 ip link set can0 down
 ip link set can1 down
 
-if [ -f $ko ]; then
+if [ -n "$ko" ]; then
 	[ "$2" -gt 0 ] || fail "$under_test: no two of can0's frames back to back"
 	echo "upstream-tx-fifo: $under_test sent $frames frames in order, $2 of $1 pairs back to back"
 else
