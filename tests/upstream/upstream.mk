@@ -19,8 +19,9 @@
 #                         and the last; make upstream-check builds them),
 #                         on both chips: a table, no verdict
 #
-# It installs what it needs, as make check does.  Not part of make check:
-# it downloads Debian's whole kernel source package for one file.
+# It installs what it needs, as make check does, which runs it after
+# vmtest; it downloads Debian's whole kernel source package once for one
+# file and checkpatch.pl.
 
 UPSTREAM_DIR := $(TOP)/tests/upstream
 # The pristine file and checkpatch.pl, fetched once per Debian version.
