@@ -130,9 +130,9 @@ include tests/upstream/upstream.mk
 
 # Then the scenario suite on the rig kernels, so that the debug kernel's
 # build (tests/vm/vm.mk) has had every other step to overlap with, and
-# with it the patch series for mainline (CHECK_VMTEST_BESIDE, started by
-# vmtest: tests/upstream/upstream.mk), whose verdict comes after it.
-CHECK_STEPS += vmtest upstream-check-await
+# the patch series for mainline, whose guests overlap the fresh-root
+# check's last stretch.
+CHECK_STEPS += vmtest upstream-check
 # Last, the fresh-root check's verdict: its roots, clones and demos run in
 # the background at idle priority from the start, taking what the other
 # steps leave of the cores (vmtest's guests leave some while they wait on
@@ -142,8 +142,7 @@ include tests/fresh-root/fresh-root.mk
 check: deps
 	@set -e; check_start=$$(date +%s); for step in $(CHECK_STEPS); do \
 		step_start=$$(date +%s); echo "== make $$step"; \
-		$(MAKE) --no-print-directory $$step INSTALL_DEPS=1 WERROR=1 \
-			VMTEST_BESIDE="$(CHECK_VMTEST_BESIDE)"; \
+		$(MAKE) --no-print-directory $$step INSTALL_DEPS=1 WERROR=1; \
 		echo "== make $$step: done in $$(( $$(date +%s) - step_start )) s"; \
 	done; \
 	echo "== make check: all steps passed in $$(( $$(date +%s) - check_start )) s ($(CHECK_STEPS))"

@@ -19,15 +19,15 @@
 #                         and the last; make upstream-check builds them),
 #                         on both chips: a table, no verdict
 #
-# It installs what it needs, as make check does, which runs it beside
-# vmtest (below); it downloads Debian's whole kernel source package once
-# for one file and checkpatch.pl.
+# It installs what it needs, as make check does, which runs it after
+# vmtest; it downloads Debian's whole kernel source package once for one
+# file and checkpatch.pl.
 
 UPSTREAM_DIR := $(TOP)/tests/upstream
 # The pristine file and checkpatch.pl, fetched once per Debian version.
 CLEAN_KEEP += upstream/source
 
-ifneq ($(filter upstream-check upstream-check-background upstream-bench,$(MAKECMDGOALS)),)
+ifneq ($(filter upstream-check upstream-bench,$(MAKECMDGOALS)),)
 export MCP2510_INSTALL_DEPS := 1
 endif
 
@@ -35,22 +35,6 @@ endif
 upstream-check: vm-kernel-6.12 vm-kernel-$(KERNEL_NEWEST)
 	@$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS="6.12 $(KERNEL_NEWEST)"
 	@$(UPSTREAM_DIR)/upstream-check
-
-# make check runs the check beside vmtest, one guest at a time next to the
-# suite's two: vmtest starts it once it has built what both use
-# (VMTEST_BESIDE), and upstream-check-await, after vmtest, gives its
-# verdict.  The suite's guests leave cores idle while they wait on
-# simulated bus time; the check's take that, not a step of their own.
-UPSTREAM_BESIDE_JOBS ?= 1
-.PHONY: upstream-check-background upstream-check-await
-upstream-check-background: vm-kernel-6.12 vm-kernel-$(KERNEL_NEWEST)
-	@$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS="6.12 $(KERNEL_NEWEST)"
-	@VM_JOBS=$(UPSTREAM_BESIDE_JOBS) $(UPSTREAM_DIR)/upstream-check --background
-
-upstream-check-await:
-	@$(UPSTREAM_DIR)/upstream-check --await
-
-CHECK_VMTEST_BESIDE += upstream-check-background
 
 UPSTREAM_BENCH_PROFILE ?= pi
 UPSTREAM_BENCH_SCALE ?= 100

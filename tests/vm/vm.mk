@@ -69,12 +69,8 @@ vm-kernel-debug:
 initramfs: $(addprefix vm-kernel-,$(VM_KERNELS))
 	@for k in $(VM_KERNELS); do $(VM_DIR)/mkinitramfs $$k || exit 1; done
 
-# VMTEST_BESIDE: make targets that start checks in the background, once
-# what they share with the suite is built and before its guests start (make
-# check's upstream-check-background): nothing rebuilds a module under them.
 vmtest: $(addprefix vm-kernel-,$(VM_KERNELS))
 	@$(MAKE) --no-print-directory $(VMTEST_DEPS) $(VMTEST_SUITE_DEPS)
-	$(if $(strip $(VMTEST_BESIDE)),@$(MAKE) --no-print-directory $(VMTEST_BESIDE))
 	@$(VM_DIR)/vmtest -k "$(VM_KERNELS)"
 
 vmtest-one:
