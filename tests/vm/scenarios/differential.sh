@@ -65,9 +65,8 @@ r=bus-off-restart-ms
 differ="$differ|$r.can0.errors|$r.can0.restarts|$r.can0.bus_off|$r.can0.tx_packets"
 differ="$differ|$r.can0.tx_bytes|$r.can0.tx_dropped|$r.can0.tx_aborted_errors"
 differ="$differ|$r.can1.rx_packets|$r.can1.rx_bytes"
-# - upstream/mcp251x's series (vm-run --module) ends that frame itself at
-#   bus-off (0011, BQL), counted in tx_errors alone: can-dev's restart
-#   counts none.
+# - the series' module (vm-run --module) ends that frame at bus-off
+#   (0011, BQL), in tx_errors alone: can-dev's restart counts none.
 [ -z "$VM_MCP251X_KO" ] ||
 	differ="$differ|restart.can0.tx_dropped|restart.can0.tx_aborted_errors"
 
