@@ -4,7 +4,7 @@
  * of what arrived (flood_count.h: the frames and the four kinds of
  * damage).  Plain SocketCAN, for the rig and for boards alike.
  *
- *   can-flood send IFACE COUNT [-i ID] [-s START]
+ *   can-flood send IFACE COUNT [-i ID] [-s START] [-r EVERY:FILE:TEXT]
  *	writes COUNT frames to IFACE as fast as it takes them (ENOBUFS:
  *	waits a millisecond and tries again; no progress for IDLE_MS fails)
  *   can-flood recv IFACE COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-o]
@@ -22,6 +22,10 @@
  *   -l MS    once every frame came, no frame for MS ms ends it; 1000
  *   -o       only frames with the flood's identifier count: the others are
  *            another sender's, not damaged frames of the flood
+ *   -r EVERY:FILE:TEXT  after every EVERY frames written, TEXT written to
+ *            FILE, its errors ignored: the rig's phantom node as a rival
+ *            sender whose frames keep pace with the flood however slowly
+ *            the host runs (tests/vm/rig.sh, burst_under_rival)
  *
  * recv and check print "ready" once listening, then one line:
  *
@@ -52,6 +56,8 @@ struct opts {
 	int idle_ms, linger_ms;
 	int only_id;
 	const char *file;
+	unsigned long rival_every;
+	const char *rival_file, *rival_text;
 };
 
 static void die(const char *what)
@@ -65,7 +71,7 @@ static void die(const char *what)
 static void usage(void)
 {
 	fprintf(stderr,
-		"usage: can-flood send IFACE COUNT [-i ID] [-s START]\n"
+		"usage: can-flood send IFACE COUNT [-i ID] [-s START] [-r EVERY:FILE:TEXT]\n"
 		"       can-flood recv IFACE COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-o]\n"
 		"       can-flood check COUNT [-i ID] [-s START] [-w WORD] [-t MS] [-l MS] [-o] [-f FILE]\n");
 	exit(2);
@@ -104,6 +110,22 @@ static unsigned long number(const char *s, int base)
 	return v;
 }
 
+/* -r EVERY:FILE:TEXT */
+static void parse_rival(char *arg, struct opts *o)
+{
+	char *file = strchr(arg, ':'), *text;
+
+	if (!file || !(text = strchr(file + 1, ':')))
+		usage();
+	*file++ = '\0';
+	*text++ = '\0';
+	o->rival_every = number(arg, 10);
+	if (!o->rival_every || !*file)
+		usage();
+	o->rival_file = file;
+	o->rival_text = text;
+}
+
 static void parse_opts(int argc, char **argv, struct opts *o)
 {
 	struct can_frame cf;
@@ -113,7 +135,7 @@ static void parse_opts(int argc, char **argv, struct opts *o)
 	o->f.id = 0x123;
 	o->idle_ms = 3000;
 	o->linger_ms = 1000;
-	while ((c = getopt(argc, argv, "i:s:w:t:l:of:")) != -1) {
+	while ((c = getopt(argc, argv, "i:s:w:t:l:of:r:")) != -1) {
 		switch (c) {
 		case 'i':
 			if (flood_id(optarg, &o->f.id))
@@ -141,10 +163,26 @@ static void parse_opts(int argc, char **argv, struct opts *o)
 		case 'f':
 			o->file = optarg;
 			break;
+		case 'r':
+			parse_rival(optarg, o);
+			break;
 		default:
 			usage();
 		}
 	}
+}
+
+/* the rival's line, once more; a run still under way refuses it */
+static void rival_write(const struct opts *o)
+{
+	int fd = open(o->rival_file, O_WRONLY);
+
+	if (fd < 0)
+		die(o->rival_file);
+	if (write(fd, o->rival_text, strlen(o->rival_text)) < 0 &&
+	    errno != EBUSY)
+		die(o->rival_file);
+	close(fd);
 }
 
 static int run_send(const char *ifname, const struct opts *o)
@@ -159,6 +197,8 @@ static int run_send(const char *ifname, const struct opts *o)
 		if (write(s, &cf, sizeof(cf)) == sizeof(cf)) {
 			n++;
 			stuck_since = 0;
+			if (o->rival_every && !(n % o->rival_every))
+				rival_write(o);
 			continue;
 		}
 		if (errno != ENOBUFS)
@@ -340,6 +380,8 @@ int main(int argc, char **argv)
 		usage();
 	if (!strcmp(mode, "send") && !o.f.fixed && !o.file)
 		return run_send(ifname, &o);
+	if (o.rival_every && strcmp(mode, "send"))
+		usage();
 	if (!strcmp(mode, "recv") && !o.file)
 		return run_recv(ifname, &o);
 	if (!strcmp(mode, "check"))
