@@ -103,10 +103,8 @@ FORCE:
 # (tests/matrix/matrix.mk).
 include tests/matrix/kernels
 
-# Fragments append their steps to CHECK_STEPS in the order they should run,
-# and to CHECK_VARS what make check sets for every step.
+# Fragments append their steps to CHECK_STEPS in the order they should run.
 CHECK_STEPS :=
-CHECK_VARS :=
 
 include tests/sim/sim.mk
 include driver/core/core.mk
@@ -131,10 +129,10 @@ include tests/matrix/matrix.mk
 include tests/upstream/upstream.mk
 
 # Then the scenario suite on the rig kernels, so that the debug kernel's
-# build (tests/vm/vm.mk) has had every other step to overlap with, with
-# the boots of the patch series for mainline among its guests
-# (tests/upstream/upstream.mk).
-CHECK_STEPS += upstream-check-prepare vmtest upstream-check-verdicts
+# build (tests/vm/vm.mk) has had every other step to overlap with, and
+# the patch series for mainline, whose guests overlap the fresh-root
+# check's last stretch.
+CHECK_STEPS += vmtest upstream-check
 # Last, the fresh-root check's verdict: its roots, clones and demos run in
 # the background at idle priority from the start, taking what the other
 # steps leave of the cores (vmtest's guests leave some while they wait on
@@ -144,7 +142,7 @@ include tests/fresh-root/fresh-root.mk
 check: deps
 	@set -e; check_start=$$(date +%s); for step in $(CHECK_STEPS); do \
 		step_start=$$(date +%s); echo "== make $$step"; \
-		$(MAKE) --no-print-directory $$step INSTALL_DEPS=1 WERROR=1 $(CHECK_VARS); \
+		$(MAKE) --no-print-directory $$step INSTALL_DEPS=1 WERROR=1; \
 		echo "== make $$step: done in $$(( $$(date +%s) - step_start )) s"; \
 	done; \
 	echo "== make check: all steps passed in $$(( $$(date +%s) - check_start )) s ($(CHECK_STEPS))"

@@ -27,23 +27,14 @@ UPSTREAM_DIR := $(TOP)/tests/upstream
 # The pristine file and checkpatch.pl, fetched once per Debian version.
 CLEAN_KEEP += upstream/source
 
-ifneq ($(filter upstream-check% upstream-bench,$(MAKECMDGOALS)),)
+ifneq ($(filter upstream-check upstream-bench,$(MAKECMDGOALS)),)
 export MCP2510_INSTALL_DEPS := 1
 endif
 
-.PHONY: upstream-check upstream-check-prepare upstream-check-verdicts
+.PHONY: upstream-check
 upstream-check: vm-kernel-6.12 vm-kernel-$(KERNEL_NEWEST)
 	@$(MAKE) --no-print-directory $(VMTEST_DEPS) VM_KERNELS="6.12 $(KERNEL_NEWEST)"
 	@$(UPSTREAM_DIR)/upstream-check
-
-# make check runs it in three steps: the source and the steps' builds, the
-# boots among vmtest's own guests (filling what the CPU has left over
-# while those wait on simulated bus time), the verdicts.
-upstream-check-prepare: vm-kernel-6.12 vm-kernel-$(KERNEL_NEWEST)
-	@$(UPSTREAM_DIR)/upstream-check --prepare
-upstream-check-verdicts:
-	@$(UPSTREAM_DIR)/upstream-check --verdicts
-CHECK_VARS += VM_EXTRA_BOOTS=$(BUILD)/upstream/boots
 
 UPSTREAM_BENCH_PROFILE ?= pi
 UPSTREAM_BENCH_SCALE ?= 100

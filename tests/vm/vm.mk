@@ -69,11 +69,9 @@ vm-kernel-debug:
 initramfs: $(addprefix vm-kernel-,$(VM_KERNELS))
 	@for k in $(VM_KERNELS); do $(VM_DIR)/mkinitramfs $$k || exit 1; done
 
-# VM_EXTRA_BOOTS: boots of another check to run among the suite's guests
-# (tests/vm/vmtest; make check's upstream-check-prepare writes them).
 vmtest: $(addprefix vm-kernel-,$(VM_KERNELS))
 	@$(MAKE) --no-print-directory $(VMTEST_DEPS) $(VMTEST_SUITE_DEPS)
-	@VM_EXTRA_BOOTS=$(VM_EXTRA_BOOTS) $(VM_DIR)/vmtest -k "$(VM_KERNELS)"
+	@$(VM_DIR)/vmtest -k "$(VM_KERNELS)"
 
 vmtest-one:
 	@test -n "$(SCENARIO)" || { echo "usage: make vmtest-one SCENARIO=tests/vm/scenarios/NAME.sh [KERNEL=6.1|6.12|7.3|debug|rt]"; exit 2; }
